@@ -1,0 +1,50 @@
+// Applying a transfer function to a mesh: p' = V G(Lambda) V^-1 p (paper eq. 8), solved
+// without eigenvectors.
+#pragma once
+
+#include "transfer_function.h"
+#include "types.h"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace geofilter {
+
+enum class Solver {
+    // Sparse Cholesky (CHOLMOD) of K + c M for each real pole, one factor reused as the
+    // preconditioner of the complex-pole pair; independent of s1. The default.
+    Factored,
+    // The paper's method: Jacobi-preconditioned CG on eq. 9, matrix-free. Slow for small s1.
+    JacobiPcg,
+};
+
+const char* solver_name(Solver solver);
+
+// Receives a fraction in [0, 1] and the current stage; returns false to cancel.
+using ProgressCallback = std::function<bool(double fraction, const std::string& stage)>;
+
+struct FilterOptions {
+    Solver solver = Solver::Factored;
+    double tolerance = 1e-10;      // relative residual of every iterative solve
+    int max_iterations = 100000;   // cap per iterative solve; hitting it is an error
+    ProgressCallback progress;
+};
+
+struct FilterReport {
+    Solver solver = Solver::Factored;
+    int active_vertices = 0;
+    int iterations = 0;            // CG iterations, summed over the solves that iterate
+    double relative_residual = 0;  // worst relative residual of eq. 9 / the factor solves
+    double seconds_assembly = 0, seconds_factorization = 0, seconds_solve = 0, seconds_total = 0;
+    std::vector<std::string> warnings;  // repairs made to the input, in plain words
+};
+
+// Filters every vertex that belongs to a usable face; other vertices keep their position.
+// The filter acts about the mesh's area-weighted centroid, so its result does not depend on
+// where the origin is (G(0) = G0 scales the constant mode). Throws Error on bad input, an
+// unstable transfer function, non-convergence or cancellation; never returns a partial result.
+Points apply_filter(const Points& points, const Triangles& triangles, const TransferFunction& g,
+                    const FilterOptions& options = {}, FilterReport* report = nullptr);
+
+} // namespace geofilter

@@ -1,0 +1,28 @@
+// Preconditioned conjugate gradients on several right-hand sides at once (x, y, z):
+// each column runs its own CG recurrence, the matrix products are shared.
+#pragma once
+
+#include "types.h"
+
+#include <functional>
+
+namespace geofilter {
+
+using BlockOperator = std::function<void(const Eigen::MatrixXd& in, Eigen::MatrixXd& out)>;
+// Called every few iterations with the worst relative residual; return false to cancel.
+using IterationObserver = std::function<bool(int iteration, double relative_residual)>;
+
+struct PcgOutcome {
+    int iterations = 0;
+    double relative_residual = 0;  // max over columns of |b - A x| / |b| (recurrence residual)
+    bool converged = false;
+    bool cancelled = false;
+};
+
+// Solves A x = b for SPD A. `x` holds the initial guess on entry. Stops when every
+// column's relative residual is below `tolerance`, or after `max_iterations`.
+PcgOutcome block_pcg(const BlockOperator& apply_matrix, const BlockOperator& apply_preconditioner,
+                     const Eigen::MatrixXd& b, Eigen::MatrixXd& x, double tolerance, int max_iterations,
+                     const IterationObserver& observer = {});
+
+} // namespace geofilter

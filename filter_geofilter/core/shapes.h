@@ -1,0 +1,32 @@
+// Procedural meshes with known geometry, for tests, benchmarks and demos.
+#pragma once
+
+#include "types.h"
+
+namespace geofilter {
+
+struct Mesh {
+    Points points;
+    Triangles triangles;
+};
+
+// Icosahedron subdivided `levels` times (each level splits every triangle in four) and
+// projected on the sphere of `radius`: 10 * 4^levels + 2 vertices, nearly regular.
+Mesh icosphere(int levels, double radius = 1.0);
+// Tetrahedron subdivided the same way and projected on the sphere.
+Mesh tetrasphere(int levels, double radius = 1.0);
+// Latitude/longitude sphere with `rings` latitude bands and `segments` meridians.
+Mesh uv_sphere(int rings, int segments, double radius = 1.0);
+// Open tube of `radius` along z, from -length/2 to length/2.
+Mesh cylinder(int rings, int segments, double radius, double length);
+// Torus with the given radii, `rings` around the tube's axis, `segments` around the tube.
+Mesh torus(int rings, int segments, double major_radius, double minor_radius);
+// Flat square [-size/2, size/2]^2 in the z = 0 plane, (n+1)^2 vertices.
+Mesh grid(int n, double size);
+
+// Moves each vertex along its radial direction by amplitude * unit noise (seeded, deterministic).
+void perturb_radially(Mesh& mesh, double amplitude, unsigned seed);
+// Splits every triangle in four (midpoints shared) without projecting.
+Mesh subdivide(const Mesh& mesh);
+
+} // namespace geofilter

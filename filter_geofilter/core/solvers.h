@@ -1,0 +1,24 @@
+// The two ways of applying a transfer function to coordinates; internal to the core.
+#pragma once
+
+#include "filter.h"
+#include "laplace.h"
+
+namespace geofilter::detail {
+
+// Inputs shared by the solvers. `coordinates` are centred; `laplacian` has positive mass
+// at every vertex.
+struct FilterProblem {
+    const Laplacian& laplacian;
+    const Eigen::MatrixXd& coordinates;
+    const TransferFunction& g;
+    const FilterOptions& options;
+};
+
+Eigen::MatrixXd solve_factored(const FilterProblem& problem, FilterReport& report);
+Eigen::MatrixXd solve_jacobi_pcg(const FilterProblem& problem, FilterReport& report);
+
+// Throws Error naming the stage if the user cancelled through the progress callback.
+void report_progress(const FilterOptions& options, double fraction, const std::string& stage);
+
+} // namespace geofilter::detail

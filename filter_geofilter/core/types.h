@@ -1,0 +1,26 @@
+// Shared vocabulary of the GeoFilter core: plain Eigen matrices and one error type.
+// The core knows nothing of Qt or MeshLab so that the same math serves every adapter.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <Eigen/SparseCore>
+
+#include <stdexcept>
+#include <string>
+
+namespace geofilter {
+
+// Row-major so that an adapter can map a contiguous xyz buffer without copying.
+using Points = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
+using Triangles = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;
+using SparseMatrix = Eigen::SparseMatrix<double>;
+
+// Every refusal of the core is an Error whose message names the problem and,
+// where there is one, the fix. Adapters show what() verbatim.
+class Error : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+} // namespace geofilter

@@ -1,0 +1,165 @@
+#include "run_filter.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace geofilter {
+
+namespace {
+
+std::string num(double v) {
+    std::ostringstream os;
+    os.precision(6);
+    os << v;
+    return os.str();
+}
+
+double value_of(const FilterSpec& spec, const ParameterValues& values, const std::string& name) {
+    auto it = values.find(name);
+    if (it != values.end()) return it->second;
+    const ParameterSpec* p = spec.parameter(name);
+    if (!p) throw Error("internal: filter " + spec.name + " has no parameter " + name);
+    return p->default_value;
+}
+
+FeatureShape shape_of(const FilterSpec& spec, const ParameterValues& values) {
+    return value_of(spec, values, param::feature_shape) == 1 ? FeatureShape::Cylinder : FeatureShape::Sphere;
+}
+
+std::string describe_feature(const FeatureEllipsoid& e) {
+    std::ostringstream os;
+    os.precision(5);
+    os << e.face_count << " selected faces, area " << e.area << "; ellipsoid radii " << e.radii[0] << ", " << e.radii[1]
+       << ", " << e.radii[2] << "; centre (" << e.center[0] << ", " << e.center[1] << ", " << e.center[2]
+       << "); feature radius r = " << e.radius << " (mean of the two most similar radii)";
+    return os.str();
+}
+
+} // namespace
+
+ParameterValues default_values(const FilterSpec& spec, bool has_selection) {
+    ParameterValues v;
+    for (const auto& p : spec.parameters) v[p.name] = p.default_value;
+    if (spec.parameter(param::use_selection)) v[param::use_selection] = has_selection ? 1 : 0;
+    return v;
+}
+
+TransferFunction design_from_values(const FilterSpec& spec, const ParameterValues& values, const FeatureEllipsoid* feature,
+                                    std::vector<std::string>& log, double* s1_used) {
+    const FeatureShape shape = shape_of(spec, values);
+    const char* shape_name = shape == FeatureShape::Sphere ? "sphere-like, s = 2/r^2" : "cylinder-like, s = 1/r^2";
+    if (spec.kind == FilterKind::SecondOrder) {
+        SecondOrderSpec s{value_of(spec, values, param::s1), value_of(spec, values, param::s2),
+                          value_of(spec, values, param::G0), value_of(spec, values, param::G1),
+                          value_of(spec, values, param::Ginf)};
+        if (feature) {
+            if (!(s.s1 > 0) || !std::isfinite(s.s2 / s.s1))
+                throw Error("s1 must be > 0 (got " + num(s.s1) + "): with useSelection it sets the ratio s2/s1");
+            const double measured = feature->frequency(shape);
+            const double ratio = s.s2 / s.s1;
+            log.push_back("s1 = " + num(measured) + " from the selection (" + shape_name + "); s2 = " + num(measured * ratio) +
+                          " keeps s2/s1 = " + num(ratio) + " (given s1 = " + num(s.s1) + ", s2 = " + num(s.s2) + ")");
+            s.s1 = measured;
+            s.s2 = measured * ratio;
+        } else {
+            log.push_back("s1 = " + num(s.s1) + ", s2 = " + num(s.s2) + " as given (useSelection off)");
+        }
+        log.push_back("design: s1 = " + num(s.s1) + ", s2 = " + num(s.s2) + ", G0 = " + num(s.G0) + ", G1 = " + num(s.G1) +
+                      ", Ginf = " + num(s.Ginf));
+        if (s1_used) *s1_used = s.s1;
+        return design_second_order(s);
+    }
+    if (spec.kind == FilterKind::PoleZero) {
+        PoleZeroSpec pz;
+        pz.G0 = value_of(spec, values, param::G0);
+        std::vector<double> corners;  // z1..z4, p1..p4 as given, 0 = unused
+        for (const auto& prefix : {param::zero_prefix, param::pole_prefix})
+            for (int i = 1; i <= param::max_pole_zero; ++i) corners.push_back(value_of(spec, values, prefix + std::to_string(i)));
+        for (size_t i = 0; i < corners.size(); ++i) {
+            const std::string name = (i < param::max_pole_zero ? "z" : "p") + std::to_string(i % param::max_pole_zero + 1);
+            if (!std::isfinite(corners[i]) || corners[i] < 0)
+                throw Error(name + " must be a finite number >= 0 (got " + num(corners[i]) + "); 0 means unused");
+        }
+        if (feature) {
+            const int corner = static_cast<int>(value_of(spec, values, param::feature_corner));
+            if (corner < 0 || corner >= static_cast<int>(corners.size()) || corners[corner] == 0)
+                throw Error("featureCorner names a corner frequency that is not in use (0): give it a value, its ratio to"
+                            " the others is kept");
+            const double measured = feature->frequency(shape);
+            const double scale = measured / corners[corner];
+            for (double& c : corners) c *= scale;
+            log.push_back("corner " + std::string(corner < param::max_pole_zero ? "z" : "p") +
+                          std::to_string(corner % param::max_pole_zero + 1) + " = " + num(measured) + " from the selection (" +
+                          shape_name + "); all corners scaled by " + num(scale));
+            if (s1_used) *s1_used = measured;
+        }
+        for (int i = 0; i < param::max_pole_zero; ++i) {
+            if (corners[i] > 0) pz.zeros.push_back(corners[i]);
+            if (corners[param::max_pole_zero + i] > 0) pz.poles.push_back(corners[param::max_pole_zero + i]);
+        }
+        std::vector<std::string> warnings;
+        TransferFunction g = design_pole_zero(pz, &warnings);
+        for (auto& w : warnings) log.push_back("warning: " + w);
+        return g;
+    }
+    throw Error("internal: " + spec.name + " is not a filter");
+}
+
+RunOutput run_filter(const FilterSpec& spec, const ParameterValues& values, const RunInput& input) {
+    RunOutput out;
+    const bool use_selection = spec.kind == FilterKind::Measure || value_of(spec, values, param::use_selection) != 0;
+    if (use_selection) {
+        if (input.selected_faces.empty())
+            throw Error(spec.kind == FilterKind::Measure
+                            ? "no faces are selected: select the feature to measure first"
+                            : "useSelection is on but no faces are selected: select the feature (e.g. with the selection"
+                              " tools or Conditional Face Selection), or turn useSelection off and give the frequency directly");
+        out.feature = measure_feature(input.points, input.triangles, input.selected_faces);
+        out.log.push_back("feature: " + describe_feature(*out.feature));
+    }
+    if (spec.kind == FilterKind::Measure) {
+        const FeatureEllipsoid& e = *out.feature;
+        out.log.push_back("feature frequency: sphere-like s = 2/r^2 = " + num(e.frequency(FeatureShape::Sphere)) +
+                          ", cylinder-like s = 1/r^2 = " + num(e.frequency(FeatureShape::Cylinder)));
+        out.ellipsoid_mesh = ellipsoid_mesh(e);
+        return out;
+    }
+
+    out.transfer = design_from_values(spec, values, out.feature ? &*out.feature : nullptr, out.log, &out.s1_used);
+    out.log.push_back(out.transfer.describe());
+    const double g1 = spec.kind == FilterKind::SecondOrder ? value_of(spec, values, param::G1) : 0.0;
+    const double s_ref = out.s1_used > 0 ? out.s1_used : 1.0;
+    const ResponseReport response = analyse_response(out.transfer, g1, s_ref * 1e-4, s_ref * 1e4);
+    out.log.push_back("peak |G| = " + num(response.peak_gain) + " at s = " + num(response.peak_frequency) +
+                      "; G(0) = " + num(out.transfer(0)) + ", G(inf) = " + num(out.transfer.at_infinity()));
+    for (const auto& w : response.warnings) out.log.push_back("warning: " + w);
+
+    FilterOptions options;
+    options.solver = value_of(spec, values, param::solver) == 1 ? Solver::JacobiPcg : Solver::Factored;
+    options.tolerance = value_of(spec, values, param::tolerance);
+    const double cap = value_of(spec, values, param::max_iterations);
+    if (!(cap >= 1 && cap <= 1e9)) throw Error("maxIterations must be between 1 and 1e9 (got " + num(cap) + ")");
+    options.max_iterations = static_cast<int>(cap);
+    options.progress = input.progress;
+    out.points = apply_filter(input.points, input.triangles, out.transfer, options, &out.report);
+    for (const auto& w : out.report.warnings) out.log.push_back("warning: " + w);
+    std::ostringstream os;
+    os.precision(3);
+    os << "solver " << solver_name(out.report.solver) << ": " << out.report.active_vertices << " vertices, "
+       << out.report.iterations << " CG iterations, relative residual " << out.report.relative_residual << "; time "
+       << out.report.seconds_total << " s (assembly " << out.report.seconds_assembly << ", factorisation "
+       << out.report.seconds_factorization << ", solve " << out.report.seconds_solve << ")";
+    out.log.push_back(os.str());
+    return out;
+}
+
+Mesh ellipsoid_mesh(const FeatureEllipsoid& e, int levels) {
+    Mesh m = icosphere(levels, 1.0);
+    for (Eigen::Index i = 0; i < m.points.rows(); ++i) {
+        const Eigen::Vector3d local = m.points.row(i).transpose().cwiseProduct(e.radii);
+        m.points.row(i) = (e.center + e.axes * local).transpose();
+    }
+    return m;
+}
+
+} // namespace geofilter

@@ -1,0 +1,55 @@
+// What every adapter does once it has read its parameters and the mesh: design the
+// transfer function (taking the frequency from the selection if asked), run it, and
+// say what happened in log lines. Adapters only translate to and from their API.
+#pragma once
+
+#include "core/feature.h"
+#include "core/filter.h"
+#include "core/shapes.h"
+#include "filter_table.h"
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace geofilter {
+
+// Parameter values by name; bools as 0/1, enums as the index. Missing names take the
+// table's default.
+using ParameterValues = std::map<std::string, double>;
+
+struct RunInput {
+    const Points& points;
+    const Triangles& triangles;
+    const std::vector<int>& selected_faces;
+    ProgressCallback progress;
+};
+
+struct RunOutput {
+    Points points;                              // filtered coordinates (empty for Measure)
+    std::optional<FeatureEllipsoid> feature;    // set when the selection was measured
+    std::optional<Mesh> ellipsoid_mesh;         // Measure: the fitted ellipsoid as a mesh
+    TransferFunction transfer;                  // the designed G(s) (filters only)
+    double s1_used = 0;                         // the frequency actually used
+    FilterReport report;
+    std::vector<std::string> log;               // human-readable lines, in order
+};
+
+// Default parameter values for `spec` (the table's, or the adapter's choice for
+// useSelection, which should follow "has the mesh selected faces").
+ParameterValues default_values(const FilterSpec& spec, bool has_selection);
+
+// The transfer function for the given values, with the frequency taken from `feature`
+// when given. Throws Error naming the parameter at fault.
+TransferFunction design_from_values(const FilterSpec& spec, const ParameterValues& values,
+                                    const FeatureEllipsoid* feature, std::vector<std::string>& log, double* s1_used = nullptr);
+
+// Runs the filter. Throws Error (with the message an adapter shows verbatim) on any
+// refusal; the input is never modified.
+RunOutput run_filter(const FilterSpec& spec, const ParameterValues& values, const RunInput& input);
+
+// The ellipsoid as a mesh (an icosphere stretched by the radii, rotated and moved).
+Mesh ellipsoid_mesh(const FeatureEllipsoid& e, int subdivision_levels = 3);
+
+} // namespace geofilter

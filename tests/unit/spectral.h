@@ -1,0 +1,45 @@
+// The exact filter the solvers must reproduce: p' = V G(Lambda) V^-1 p from a dense
+// generalized eigen-decomposition K v = lambda M v (paper eq. 3-8). Test-only: O(n^3).
+#pragma once
+
+#include "core/laplace.h"
+#include "core/shapes.h"
+#include "core/transfer_function.h"
+
+#include <Eigen/Eigenvalues>
+
+namespace geofilter::reference {
+
+struct Spectrum {
+    Eigen::VectorXd eigenvalues;
+    Eigen::MatrixXd eigenvectors;  // M-orthonormal: V^T M V = I, so V^-1 = V^T M
+    Eigen::VectorXd mass;
+};
+
+inline Spectrum spectrum_of(const Mesh& mesh) {
+    const Laplacian l = cotan_laplacian(mesh.points, mesh.triangles);
+    const Eigen::MatrixXd k = Eigen::MatrixXd(l.stiffness);
+    const Eigen::MatrixXd m = l.mass.asDiagonal();
+    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(k, m);
+    return {eig.eigenvalues(), eig.eigenvectors(), l.mass};
+}
+
+// Applies G about the area-weighted centroid, as apply_filter does.
+inline Points spectral_filter(const Spectrum& s, const Points& p, const TransferFunction& g) {
+    const Eigen::RowVector3d c = (s.mass.transpose() * p) / s.mass.sum();
+    const Eigen::MatrixXd centred = p.rowwise() - c;
+    Eigen::VectorXd gains(s.eigenvalues.size());
+    for (Eigen::Index i = 0; i < gains.size(); ++i) gains[i] = g(std::max(0.0, s.eigenvalues[i]));
+    const Eigen::MatrixXd modal = s.eigenvectors.transpose() * (s.mass.asDiagonal() * centred);
+    Eigen::MatrixXd out = s.eigenvectors * (gains.asDiagonal() * modal);
+    out.rowwise() += c;
+    return out;
+}
+
+inline double bbox_diagonal(const Points& p) { return (p.colwise().maxCoeff() - p.colwise().minCoeff()).norm(); }
+
+inline double mean_radius(const Points& p, const Eigen::RowVector3d& centre = Eigen::RowVector3d::Zero()) {
+    return (p.rowwise() - centre).rowwise().norm().mean();
+}
+
+} // namespace geofilter::reference

@@ -1,0 +1,74 @@
+#include "filter_table.h"
+#include "run_filter.h"
+
+#include <gtest/gtest.h>
+
+#include <set>
+
+using namespace geofilter;
+
+TEST(FilterTable, NamesAreTheOnesScriptsDependOn) {
+    const std::set<std::string> expected = {"GeoFilter: Lowpass", "GeoFilter: Bandpass", "GeoFilter: Highpass",
+                                            "GeoFilter: Notch", "GeoFilter: Band Exaggeration", "GeoFilter: Custom",
+                                            "GeoFilter: Measure Selected Feature", "GeoFilter: Pole-Zero"};
+    std::set<std::string> names, python, cli;
+    for (const auto& f : filter_table()) {
+        names.insert(f.name);
+        python.insert(f.python_name);
+        cli.insert(f.cli_name);
+        EXPECT_EQ(find_filter(f.python_name), &f);
+        EXPECT_EQ(find_filter(f.cli_name), &f);
+    }
+    EXPECT_EQ(names, expected);
+    EXPECT_EQ(python.size(), expected.size());
+    EXPECT_EQ(cli.size(), expected.size());
+}
+
+// Every preset default must pass the stability check (PAPER-NOTES section 4) and mean
+// what its name says.
+TEST(FilterTable, EverySecondOrderPresetIsStableAndHasTheFiveParameters) {
+    for (const auto& f : filter_table()) {
+        if (f.kind != FilterKind::SecondOrder) continue;
+        SCOPED_TRACE(f.name);
+        for (const char* p : {"s1", "s2", "G0", "G1", "Ginf", "useSelection", "featureShape", "solver"})
+            ASSERT_NE(f.parameter(p), nullptr) << p;
+        const SecondOrderSpec s{f.parameter("s1")->default_value, f.parameter("s2")->default_value,
+                                f.parameter("G0")->default_value, f.parameter("G1")->default_value,
+                                f.parameter("Ginf")->default_value};
+        const TransferFunction g = design_second_order(s);
+        for (const auto& pole : g.poles) EXPECT_TRUE(pole.imag() != 0 || pole.real() < 0);
+    }
+    auto gain = [](const char* name, double s) {
+        const FilterSpec& f = *find_filter(name);
+        std::vector<std::string> log;
+        return design_from_values(f, default_values(f, false), nullptr, log, nullptr)(s);
+    };
+    EXPECT_LT(gain("lowpass", 1e4), 0.01);
+    EXPECT_NEAR(gain("lowpass", 0), 1, 1e-12);
+    EXPECT_LT(gain("highpass", 0.01), 0.01);
+    EXPECT_NEAR(gain("highpass", 1e7), 1, 1e-3);
+    EXPECT_LT(gain("bandpass", 0), 1e-12);
+    EXPECT_LT(gain("notch", 630), 0.02);
+    EXPECT_GT(gain("exaggerate", 25), 2.9);
+}
+
+TEST(FilterTable, UseSelectionDefaultFollowsTheSelection) {
+    const FilterSpec& f = *find_filter("lowpass");
+    EXPECT_EQ(default_values(f, true).at("useSelection"), 1);
+    EXPECT_EQ(default_values(f, false).at("useSelection"), 0);
+}
+
+TEST(FilterTable, FeatureFrequencyDrivesS1AndKeepsTheRatio) {
+    const FilterSpec& f = *find_filter("notch");
+    FeatureEllipsoid e;
+    e.radius = 0.1;
+    std::vector<std::string> log;
+    double s1 = 0;
+    ParameterValues v = default_values(f, true);
+    const TransferFunction g = design_from_values(f, v, &e, log, &s1);
+    EXPECT_NEAR(s1, 200, 1e-9);
+    EXPECT_NEAR(g(400), 1.0, 1e-9);  // s2 = 2 s1 as in the preset's 630 / 1260
+    v["featureShape"] = 1;
+    design_from_values(f, v, &e, log, &s1);
+    EXPECT_NEAR(s1, 100, 1e-9);
+}
