@@ -21,6 +21,7 @@ Points apply_filter(const Points& points, const Triangles& triangles, const Tran
     if (!(options.tolerance > 0 && options.tolerance < 1))
         throw Error("the solver tolerance must lie in (0, 1) (got " + std::to_string(options.tolerance) + ")");
     if (options.max_iterations < 1) throw Error("the iteration cap must be at least 1");
+    if (!(options.accuracy > 0)) throw Error("the accuracy must be > 0");
     for (const auto& p : g.poles)
         if (p.imag() == 0 && p.real() >= 0)
             throw Error("unstable filter: a pole lies at s = " + std::to_string(p.real()) + " >= 0");
@@ -39,7 +40,8 @@ Points apply_filter(const Points& points, const Triangles& triangles, const Tran
     const Eigen::MatrixXd centred = mesh.points.rowwise() - centroid;
     report.seconds_assembly = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
-    const detail::FilterProblem problem{laplacian, centred, g, options};
+    const double size = (mesh.points.colwise().maxCoeff() - mesh.points.colwise().minCoeff()).norm();
+    const detail::FilterProblem problem{laplacian, centred, g, options, size};
     Eigen::MatrixXd filtered = options.solver == Solver::Factored ? detail::solve_factored(problem, report)
                                                                    : detail::solve_jacobi_pcg(problem, report);
     filtered.rowwise() += centroid;

@@ -27,6 +27,10 @@ using ProgressCallback = std::function<bool(double fraction, const std::string& 
 struct FilterOptions {
     Solver solver = Solver::Factored;
     double tolerance = 1e-10;      // relative residual of every iterative solve
+    // The factored solver also stops once its estimated remaining error is below this
+    // fraction of the bounding-box diagonal at every vertex (its CG converges at a rate
+    // known from the poles, so the last update bounds the error).
+    double accuracy = 1e-8;
     int max_iterations = 100000;   // cap per iterative solve; hitting it is an error
     ProgressCallback progress;
 };

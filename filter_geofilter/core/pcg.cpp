@@ -6,7 +6,7 @@ namespace geofilter {
 
 PcgOutcome block_pcg(const BlockOperator& apply_matrix, const BlockOperator& apply_preconditioner,
                      const Eigen::MatrixXd& b, Eigen::MatrixXd& x, double tolerance, int max_iterations,
-                     const IterationObserver& observer) {
+                     const IterationObserver& observer, const StepTest& step_small) {
     const Eigen::Index columns = b.cols();
     Eigen::MatrixXd r(b.rows(), columns), z(b.rows(), columns), p, q(b.rows(), columns);
     apply_matrix(x, q);
@@ -31,19 +31,26 @@ PcgOutcome block_pcg(const BlockOperator& apply_matrix, const BlockOperator& app
     p = z;
     Eigen::ArrayXd rz = (r.cwiseProduct(z)).colwise().sum().transpose().array();
 
+    Eigen::MatrixXd step;
+    int small_steps = 0;
     for (int it = 1; it <= max_iterations; ++it) {
         apply_matrix(p, q);
         const Eigen::ArrayXd pq = (p.cwiseProduct(q)).colwise().sum().transpose().array();
+        Eigen::ArrayXd alpha(columns);
         for (Eigen::Index c = 0; c < columns; ++c) {
             // A column that has converged exactly has rz = 0: leave it alone.
-            const double alpha = (pq[c] > 0 && rz[c] != 0) ? rz[c] / pq[c] : 0.0;
-            x.col(c) += alpha * p.col(c);
-            r.col(c) -= alpha * q.col(c);
+            alpha[c] = (pq[c] > 0 && rz[c] != 0) ? rz[c] / pq[c] : 0.0;
+            x.col(c) += alpha[c] * p.col(c);
+            r.col(c) -= alpha[c] * q.col(c);
         }
         outcome.iterations = it;
         outcome.relative_residual = worst_residual();
         if (!std::isfinite(outcome.relative_residual)) return outcome;
-        if (outcome.relative_residual <= tolerance) {
+        if (step_small) {
+            step = p * alpha.matrix().asDiagonal();
+            small_steps = step_small(step) ? small_steps + 1 : 0;
+        }
+        if (outcome.relative_residual <= tolerance || small_steps >= 2) {
             outcome.converged = true;
             return outcome;
         }

@@ -19,10 +19,15 @@ struct PcgOutcome {
     bool cancelled = false;
 };
 
+// Given the last update of x (one column per right-hand side), says whether the
+// remaining error is small enough to stop.
+using StepTest = std::function<bool(const Eigen::MatrixXd& step)>;
+
 // Solves A x = b for SPD A. `x` holds the initial guess on entry. Stops when every
-// column's relative residual is below `tolerance`, or after `max_iterations`.
+// column's relative residual is below `tolerance`, when `step_small` accepts two updates
+// in a row, or after `max_iterations`.
 PcgOutcome block_pcg(const BlockOperator& apply_matrix, const BlockOperator& apply_preconditioner,
                      const Eigen::MatrixXd& b, Eigen::MatrixXd& x, double tolerance, int max_iterations,
-                     const IterationObserver& observer = {});
+                     const IterationObserver& observer = {}, const StepTest& step_small = {});
 
 } // namespace geofilter

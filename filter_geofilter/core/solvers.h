@@ -4,6 +4,8 @@
 #include "filter.h"
 #include "laplace.h"
 
+#include <cholmod.h>
+
 namespace geofilter::detail {
 
 // Inputs shared by the solvers. `coordinates` are centred; `laplacian` has positive mass
@@ -13,10 +15,14 @@ struct FilterProblem {
     const Eigen::MatrixXd& coordinates;
     const TransferFunction& g;
     const FilterOptions& options;
+    double size;  // bounding-box diagonal of the filtered vertices
 };
 
 Eigen::MatrixXd solve_factored(const FilterProblem& problem, FilterReport& report);
 Eigen::MatrixXd solve_jacobi_pcg(const FilterProblem& problem, FilterReport& report);
+
+// The fill-reducing ordering every CHOLMOD factorisation of the project uses.
+void use_amd_ordering(cholmod_common& common);
 
 // Throws Error naming the stage if the user cancelled through the progress callback.
 void report_progress(const FilterOptions& options, double fraction, const std::string& stage);

@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# Installs what GeoFilter needs on Debian 12 (as root) and extracts the real meshes into
+# meshes/. Only installs packages: no apt source is added, no system file is edited.
+set -euo pipefail
+top=$(cd "$(dirname "$0")/.." && pwd)
+
+packages=(
+    build-essential cmake                 # the build
+    meshlab                               # MeshLab 2020.09: meshlab, meshlabserver, libmeshlab-common.so
+    dpkg-dev                              # apt-get source / dpkg-source, for MeshLab's headers and vcglib
+    qtbase5-dev libqt5opengl5-dev libglew-dev   # what MeshLab's headers include
+    libeigen3-dev libsuitesparse-dev      # the core: Eigen and CHOLMOD
+    libopenblas0-pthread                  # a multithreaded BLAS under CHOLMOD (2x faster factorisation)
+    libgtest-dev                          # unit tests
+    xvfb xauth                            # meshlabserver needs an X display
+    python3-numpy python3-matplotlib      # integration tests, plots and renders
+    gnuplot-nox                           # G(s) and benchmark plots
+    libcgal-demo                          # real meshes (data.tar.gz)
+)
+missing=()
+for p in "${packages[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+    echo "setup: installing ${missing[*]}"
+    if [ "$(id -u)" -ne 0 ]; then
+        echo "setup: these packages are missing and installing them needs root: ${missing[*]}" >&2
+        exit 1
+    fi
+    export DEBIAN_FRONTEND=noninteractive
+    apt-get update -q
+    apt-get install -y -q "${missing[@]}"
+fi
+
+"$top/scripts/fetch-meshes.sh"
