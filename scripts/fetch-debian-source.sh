@@ -66,11 +66,32 @@ apt_opts=(-o "Dir::Etc::SourceList=$src_list" -o "Dir::Etc::SourceParts=/nonexis
           -o "Dir::State::status=/var/lib/dpkg/status" -o "APT::Sandbox::User=root")
 apt-get "${apt_opts[@]}" -q update >&2
 cd "$dest"
-apt-get "${apt_opts[@]}" -q source --download-only "$pkg" >&2
-dsc=$(ls -t "$dest"/${pkg}_*.dsc | head -n1)
-ver=$(basename "$dsc" .dsc); ver=${ver#${pkg}_}; upver=${ver%-*}; upver=${upver#*:}
+# The version `apt-get source` picks: the highest one in the index.
+ver=""
+for v in $(apt-cache "${apt_opts[@]}" showsrc "$pkg" 2>/dev/null |
+           awk -v p="$pkg" '/^Package: /{cur=$2} /^Version: /&&cur==p{print $2}'); do
+    if [ -z "$ver" ] || dpkg --compare-versions "$v" gt "$ver"; then ver=$v; fi
+done
+[ -n "$ver" ] || { echo "fetch-debian-source: no source package $pkg in $suite" >&2; exit 1; }
+ver=${ver#*:}; upver=${ver%-*}
 tree="$dest/$pkg-$upver"
-if [ ! -d "$tree" ]; then
+if [ -d "$tree" ]; then echo "$tree"; exit 0; fi
+
+# Some archives this runs against serve the upstream tarball but not the .dsc or the
+# Debian diff (seen for trixie's and sid's meshlab). apt checks every file it does get
+# against the signed index, so the tarball alone is still trustworthy: unpack it without
+# Debian's patches rather than fail, and say so.
+apt-get "${apt_opts[@]}" -q source --download-only "$pkg" >&2 || true
+dsc="$dest/${pkg}_$ver.dsc"
+if [ -f "$dsc" ]; then
     dpkg-source --no-check -x "$dsc" "$tree" >&2
+else
+    orig=$(ls "$dest/${pkg}_$upver".orig.tar.* 2>/dev/null | grep -v '\.asc$' | head -n1 || true)
+    [ -n "$orig" ] || { echo "fetch-debian-source: could not download $pkg $ver" >&2; exit 1; }
+    echo "fetch-debian-source: WARNING: ${pkg}_$ver.dsc is not available; unpacking $(basename "$orig")" \
+         "without Debian's patches" >&2
+    mkdir -p "$tree.partial"
+    tar -xf "$orig" -C "$tree.partial" --strip-components=1
+    mv "$tree.partial" "$tree"
 fi
 echo "$tree"

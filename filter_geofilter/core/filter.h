@@ -30,7 +30,7 @@ struct FilterOptions {
     // The factored solver also stops once its estimated remaining error is below this
     // fraction of the bounding-box diagonal at every vertex (its CG converges at a rate
     // known from the poles, so the last update bounds the error).
-    double accuracy = 1e-8;
+    double accuracy = 1e-7;
     int max_iterations = 100000;   // cap per iterative solve; hitting it is an error
     ProgressCallback progress;
 };

@@ -1,0 +1,194 @@
+#include "mesh_io.h"
+
+#include <vcg/complex/complex.h>
+#include <vcg/complex/algorithms/clean.h>
+#include <vcg/complex/algorithms/update/normal.h>
+#include <wrap/io_trimesh/export.h>
+#include <wrap/io_trimesh/import.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <fstream>
+
+namespace geofilter::cli {
+
+namespace {
+
+class CliVertex;
+class CliFace;
+struct CliUsedTypes
+    : public vcg::UsedTypes<vcg::Use<CliVertex>::AsVertexType, vcg::Use<CliFace>::AsFaceType> {};
+// Double precision so that a PLY written by the tool loses nothing the solver computed.
+// Colour, quality and texture coordinates are carried so that filtering a coloured scan
+// does not strip it; BitFlags on faces is where PLY's stored selection arrives.
+class CliVertex : public vcg::Vertex<CliUsedTypes, vcg::vertex::Coord3d, vcg::vertex::Normal3d, vcg::vertex::Color4b,
+                                     vcg::vertex::Qualityd, vcg::vertex::TexCoord2d, vcg::vertex::BitFlags> {};
+class CliFace : public vcg::Face<CliUsedTypes, vcg::face::VertexRef, vcg::face::Normal3d, vcg::face::Color4b,
+                                 vcg::face::Qualityd, vcg::face::BitFlags> {};
+class CliMesh : public vcg::tri::TriMesh<std::vector<CliVertex>, std::vector<CliFace>> {};
+
+using Importer = vcg::tri::io::Importer<CliMesh>;
+using Exporter = vcg::tri::io::Exporter<CliMesh>;
+using IoMask = vcg::tri::io::Mask;
+
+int export_capability(MeshFormat format) {
+    switch (format) {
+    case MeshFormat::Ply: return vcg::tri::io::ExporterPLY<CliMesh>::GetExportMaskCapability();
+    case MeshFormat::Obj: return vcg::tri::io::ExporterOBJ<CliMesh>::GetExportMaskCapability();
+    case MeshFormat::Off: return vcg::tri::io::ExporterOFF<CliMesh>::GetExportMaskCapability();
+    case MeshFormat::Stl: return vcg::tri::io::ExporterSTL<CliMesh>::GetExportMaskCapability();
+    }
+    return 0;
+}
+
+MeshFormat require_format(const std::string& path) {
+    const auto format = format_of(path);
+    if (!format) throw Error("cannot tell the format of '" + path + "': use " + supported_formats());
+    return *format;
+}
+
+void require_readable(const std::string& path) {
+    std::ifstream probe(path, std::ios::binary);
+    if (!probe) throw Error("cannot read '" + path + "': no such file or no permission");
+    char c;
+    if (!probe.get(c)) throw Error("cannot read '" + path + "': the file is empty or not a regular file");
+}
+
+// Whatever else a file's flag words hold (deleted, visited, border bits of another
+// program's session) must not reach this session: only the selection bit is kept.
+std::vector<int> keep_only_selection_flags(CliMesh& m) {
+    std::vector<int> selected;
+    for (auto& v : m.vert) v.Flags() = 0;
+    for (size_t i = 0; i < m.face.size(); ++i) {
+        const bool was_selected = m.face[i].IsS();
+        m.face[i].Flags() = 0;
+        if (was_selected) {
+            m.face[i].SetS();
+            selected.push_back(int(i));
+        }
+    }
+    return selected;
+}
+
+void save(CliMesh& m, const std::string& path, int mask) {
+    const MeshFormat format = require_format(path);
+    mask &= export_capability(format);
+    if (mask & (IoMask::IOM_VERTNORMAL | IoMask::IOM_FACENORMAL)) {
+        // The normals read with the input describe the shape before filtering.
+        vcg::tri::UpdateNormal<CliMesh>::PerFaceNormalized(m);
+        vcg::tri::UpdateNormal<CliMesh>::PerVertexAngleWeighted(m);
+    }
+    const int err = Exporter::Save(m, path.c_str(), mask);
+    if (err != 0) throw Error("cannot write '" + path + "': " + Exporter::ErrorMsg(err));
+}
+
+} // namespace
+
+struct MeshFile::Data {
+    MeshFormat format;
+    CliMesh mesh;
+    int load_mask = 0;
+    Points points;
+    Triangles triangles;
+    bool has_stored_flags = false;
+    std::vector<int> stored_selection;
+    std::vector<std::string> notes;
+};
+
+std::optional<MeshFormat> format_of(const std::string& path) {
+    const auto dot = path.find_last_of('.');
+    if (dot == std::string::npos || path.find('/', dot) != std::string::npos) return std::nullopt;
+    std::string ext = path.substr(dot + 1);
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    if (ext == "ply") return MeshFormat::Ply;
+    if (ext == "obj") return MeshFormat::Obj;
+    if (ext == "off") return MeshFormat::Off;
+    if (ext == "stl") return MeshFormat::Stl;
+    return std::nullopt;
+}
+
+const char* format_name(MeshFormat format) {
+    switch (format) {
+    case MeshFormat::Ply: return "PLY";
+    case MeshFormat::Obj: return "OBJ";
+    case MeshFormat::Off: return "OFF";
+    case MeshFormat::Stl: return "STL";
+    }
+    return "?";
+}
+
+const char* supported_formats() { return "PLY, OBJ, OFF or STL (.ply, .obj, .off, .stl)"; }
+
+MeshFile::MeshFile(std::unique_ptr<Data> data) : data_(std::move(data)) {}
+MeshFile::MeshFile(MeshFile&&) noexcept = default;
+MeshFile& MeshFile::operator=(MeshFile&&) noexcept = default;
+MeshFile::~MeshFile() = default;
+
+MeshFile MeshFile::read(const std::string& path) {
+    auto d = std::make_unique<Data>();
+    d->format = require_format(path);
+    require_readable(path);
+    CliMesh& m = d->mesh;
+    const int err = Importer::Open(m, path.c_str(), d->load_mask);
+    if (err != 0 && Importer::ErrorCritical(err))
+        throw Error("cannot read '" + path + "' as " + format_name(d->format) + ": " + Importer::ErrorMsg(err));
+
+    if (d->format == MeshFormat::Stl) {
+        const int corners = m.vn;
+        // Exact comparison is right here: the copies of one corner are the same float triplet.
+        vcg::tri::Clean<CliMesh>::RemoveDuplicateVertex(m, false);
+        vcg::tri::Allocator<CliMesh>::CompactEveryVector(m);
+        d->notes.push_back("STL has no shared vertices: welded its " + std::to_string(corners) + " triangle corners into " +
+                           std::to_string(m.vn) + " vertices");
+    }
+    d->has_stored_flags = (d->load_mask & IoMask::IOM_FACEFLAGS) != 0;
+    d->stored_selection = keep_only_selection_flags(m);
+    if (d->has_stored_flags)
+        d->notes.push_back("stored face flags: " + std::to_string(d->stored_selection.size()) + " of " +
+                           std::to_string(m.fn) + " faces selected");
+    // Flags are this session's business: they are written back only as the selection.
+    d->load_mask &= ~(IoMask::IOM_FACEFLAGS | IoMask::IOM_VERTFLAGS);
+
+    d->points.resize(Eigen::Index(m.vert.size()), 3);
+    for (size_t i = 0; i < m.vert.size(); ++i)
+        for (int k = 0; k < 3; ++k) d->points(Eigen::Index(i), k) = m.vert[i].P()[k];
+    d->triangles.resize(Eigen::Index(m.face.size()), 3);
+    for (size_t i = 0; i < m.face.size(); ++i)
+        for (int k = 0; k < 3; ++k) d->triangles(Eigen::Index(i), k) = int(vcg::tri::Index(m, m.face[i].V(k)));
+    return MeshFile(std::move(d));
+}
+
+MeshFormat MeshFile::format() const { return data_->format; }
+const Points& MeshFile::points() const { return data_->points; }
+const Triangles& MeshFile::triangles() const { return data_->triangles; }
+bool MeshFile::has_stored_flags() const { return data_->has_stored_flags; }
+const std::vector<int>& MeshFile::stored_selection() const { return data_->stored_selection; }
+const std::vector<std::string>& MeshFile::notes() const { return data_->notes; }
+
+void MeshFile::write(const std::string& path, const Points& points, const std::vector<int>& selected_faces) {
+    CliMesh& m = data_->mesh;
+    if (points.rows() != Eigen::Index(m.vert.size()))
+        throw Error("internal: " + std::to_string(points.rows()) + " points for " + std::to_string(m.vert.size()) +
+                    " vertices");
+    for (size_t i = 0; i < m.vert.size(); ++i)
+        m.vert[i].P() = vcg::Point3d(points(Eigen::Index(i), 0), points(Eigen::Index(i), 1), points(Eigen::Index(i), 2));
+    for (auto& f : m.face) f.ClearS();
+    for (int i : selected_faces) m.face[size_t(i)].SetS();
+    int mask = data_->load_mask;
+    if (!selected_faces.empty() && require_format(path) == MeshFormat::Ply) mask |= IoMask::IOM_FACEFLAGS;
+    save(m, path, mask);
+}
+
+void write_mesh(const std::string& path, const Mesh& mesh) {
+    CliMesh m;
+    auto vi = vcg::tri::Allocator<CliMesh>::AddVertices(m, size_t(mesh.points.rows()));
+    for (Eigen::Index i = 0; i < mesh.points.rows(); ++i, ++vi)
+        vi->P() = vcg::Point3d(mesh.points(i, 0), mesh.points(i, 1), mesh.points(i, 2));
+    auto fi = vcg::tri::Allocator<CliMesh>::AddFaces(m, size_t(mesh.triangles.rows()));
+    for (Eigen::Index i = 0; i < mesh.triangles.rows(); ++i, ++fi)
+        for (int k = 0; k < 3; ++k) fi->V(k) = &m.vert[size_t(mesh.triangles(i, k))];
+    save(m, path, IoMask::IOM_VERTCOORD | IoMask::IOM_FACEINDEX);
+}
+
+} // namespace geofilter::cli

@@ -1,0 +1,58 @@
+// Reading and writing meshes for the command-line tool through vcglib's importers and
+// exporters (PLY, OBJ, OFF, STL). vcglib stays inside mesh_io.cpp: the rest of the tool
+// sees the core's plain arrays.
+#pragma once
+
+#include "core/shapes.h"
+#include "core/types.h"
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace geofilter::cli {
+
+enum class MeshFormat { Ply, Obj, Off, Stl };
+
+// By the file name's extension, case-insensitively; nullopt for anything else.
+std::optional<MeshFormat> format_of(const std::string& path);
+const char* format_name(MeshFormat format);
+const char* supported_formats();  // for messages: "PLY, OBJ, OFF or STL (.ply, .obj, .off, .stl)"
+
+class MeshFile {
+public:
+    // Throws Error naming the file and vcglib's reason. STL stores every triangle with its
+    // own three corners: those are welded (bit-identical positions merged) so that the
+    // mesh is connected, as the Laplacian needs.
+    static MeshFile read(const std::string& path);
+
+    MeshFile(MeshFile&&) noexcept;
+    MeshFile& operator=(MeshFile&&) noexcept;
+    ~MeshFile();
+
+    MeshFormat format() const;
+    const Points& points() const;
+    const Triangles& triangles() const;
+    // The file carried vcglib/MeshLab face flags (PLY "property int flags" on faces).
+    bool has_stored_flags() const;
+    // Faces whose stored flags have the selection bit; empty without stored flags.
+    const std::vector<int>& stored_selection() const;
+    // What reading did that a user should know (welding, triangulated polygons, dropped flags).
+    const std::vector<std::string>& notes() const;
+
+    // Writes the mesh with `points` in place of the read ones, keeping the attributes that
+    // were read and that `path`'s format can hold (normals are recomputed). A PLY output
+    // stores `selected_faces` as face flags when there are any. Throws Error.
+    void write(const std::string& path, const Points& points, const std::vector<int>& selected_faces);
+
+private:
+    struct Data;
+    explicit MeshFile(std::unique_ptr<Data> data);
+    std::unique_ptr<Data> data_;
+};
+
+// Writes a mesh built by the core (e.g. the measured ellipsoid). Throws Error.
+void write_mesh(const std::string& path, const Mesh& mesh);
+
+} // namespace geofilter::cli

@@ -1,0 +1,113 @@
+#!/usr/bin/env bash
+# Builds the parts of MeshLab 2022.02 that GeoFilter's 2022 adapter is tested against
+# (libmeshlab-common, the meshlab GUI, plugins io_base, filter_create, filter_select,
+# filter_unsharp) from Debian trixie's source package, once per machine.
+#
+#   build-meshlab-2022.sh [--double]
+#     --double   MeshLab with double-precision scalars (BUILD_WITH_DOUBLE_SCALAR), as
+#                pymeshlab 2025.7 is built; kept in its own build folder.
+#
+# Environment: GEOFILTER_CACHE_DIR  where sources and builds are kept (default
+#                /var/cache/geofilter when writable, else ${XDG_CACHE_HOME:-~/.cache}/geofilter)
+#              GEOFILTER_JOBS       parallel compile jobs (default 2: the machine is shared)
+# The last two lines of stdout are  MESHLAB_SOURCE_DIR=<tree>  and  MESHLAB_BUILD_DIR=<dir>.
+set -euo pipefail
+top=$(cd "$(dirname "$0")/.." && pwd)
+
+scalar=float
+for a in "$@"; do
+    case "$a" in
+        --double) scalar=double ;;
+        *) echo "usage: $0 [--double]" >&2; exit 2 ;;
+    esac
+done
+jobs=${GEOFILTER_JOBS:-2}
+
+if [ -n "${GEOFILTER_CACHE_DIR:-}" ]; then
+    cache=$GEOFILTER_CACHE_DIR
+elif mkdir -p /var/cache/geofilter 2>/dev/null && [ -w /var/cache/geofilter ]; then
+    cache=/var/cache/geofilter   # shared by every checkout on the machine
+else
+    cache=${XDG_CACHE_HOME:-$HOME/.cache}/geofilter
+fi
+mkdir -p "$cache"
+cache=$(cd "$cache" && pwd)
+
+# The plugins our tests load next to GeoFilter; anything else would only cost build time.
+plugins=(io_base filter_create filter_select filter_unsharp)
+targets=(meshlab-common meshlab "${plugins[@]}" copy-distrib-files)
+plugin_dirs=$(printf 'meshlabplugins/%s;' "${plugins[@]}"); plugin_dirs=${plugin_dirs%;}
+
+fetch_dest=$cache/meshlab-trixie-source
+build=$cache/meshlab-2022-$scalar-build
+stamp=$build/.geofilter-build-complete
+# Everything that changes the result; a stamp with another signature means rebuild.
+signature="targets=${targets[*]} plugins=$plugin_dirs scalar=$scalar script=2"
+
+report() {
+    echo "MESHLAB_SOURCE_DIR=$1"
+    echo "MESHLAB_BUILD_DIR=$2"
+}
+
+complete() {
+    [ -f "$stamp" ] && [ "$(sed -n 2p "$stamp")" = "$signature" ] || return 1
+    local src; src=$(sed -n 1p "$stamp")
+    [ -f "$src/src/common/plugins/interfaces/filter_plugin.h" ] || return 1
+    [ -x "$build/distrib/meshlab" ] && [ -f "$build/distrib/libmeshlab-common.so" ] || return 1
+    for p in "${plugins[@]}"; do [ -f "$build/distrib/plugins/lib$p.so" ] || return 1; done
+}
+
+if complete; then
+    echo "build-meshlab-2022: cached build is complete" >&2
+    report "$(sed -n 1p "$stamp")" "$build"
+    exit 0
+fi
+
+# Two checkouts building at once would trample the same folder: take turns.
+exec 9>"$cache/.meshlab-2022-$scalar.lock"
+flock 9
+if complete; then   # someone else finished it while we waited
+    report "$(sed -n 1p "$stamp")" "$build"
+    exit 0
+fi
+
+# What MeshLab's CMake needs for this subset (Debian trixie's Build-Depends, minus the
+# libraries of the plugins left out).
+needed=(cmake g++ make dpkg-dev xz-utils qtbase5-dev libqt5opengl5-dev libglew-dev
+        libeigen3-dev libglu1-mesa-dev)
+missing=()
+for p in "${needed[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+    if [ "$(id -u)" -ne 0 ]; then
+        echo "build-meshlab-2022: missing packages (install them as root): ${missing[*]}" >&2
+        exit 1
+    fi
+    echo "build-meshlab-2022: installing ${missing[*]}" >&2
+    DEBIAN_FRONTEND=noninteractive apt-get install -y -q "${missing[@]}" >&2
+fi
+
+src=$("$top/scripts/fetch-debian-source.sh" meshlab trixie "$fetch_dest" | tail -n1)
+if [ ! -f "$src/src/common/plugins/interfaces/filter_plugin.h" ]; then
+    echo "build-meshlab-2022: $src is not a MeshLab 2022+ tree (no src/common/plugins/interfaces/filter_plugin.h)" >&2
+    exit 1
+fi
+ver=$(tr -d ' \n' <"$src/ML_VERSION")
+[ "$ver" = 2022.02 ] || echo "build-meshlab-2022: NOTE: trixie has MeshLab $ver, not 2022.02; building that" >&2
+
+double=OFF; [ "$scalar" = double ] && double=ON
+start=$(date +%s)
+rm -f "$stamp"
+# ALLOW_OPTIONAL_EXTERNAL_MESHLAB_LIBRARIES=OFF skips every optional bundled library
+# (CGAL, libigl, levmar, u3d, ...): none of the chosen plugins uses one.
+nice cmake -S "$src/src" -B "$build" -DCMAKE_BUILD_TYPE=Release \
+    -DMESHLAB_PLUGINS="$plugin_dirs" \
+    -DALLOW_OPTIONAL_EXTERNAL_MESHLAB_LIBRARIES=OFF \
+    -DALLOW_BUNDLED_EIGEN=OFF -DALLOW_BUNDLED_GLEW=OFF \
+    -DBUILD_WITH_DOUBLE_SCALAR=$double >&2
+nice cmake --build "$build" -j"$jobs" --target "${targets[@]}" >&2
+printf '%s\n%s\n' "$src" "$signature" >"$stamp"
+complete || { echo "build-meshlab-2022: build finished but outputs are missing in $build/distrib" >&2; exit 1; }
+echo "build-meshlab-2022: built in $(( $(date +%s) - start )) s" >&2
+report "$src" "$build"
