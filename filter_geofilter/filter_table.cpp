@@ -39,6 +39,11 @@ std::vector<ParameterSpec> second_order_parameters(const SecondOrderSpec& d) {
          "How the selected feature's radius r becomes a frequency: sphere-like (a bump, a nose) s = 2/r^2,"
          " cylinder-like (a leg, a finger) s = 1/r^2. r is the mean of the two most similar ellipsoid radii.",
          {"Sphere-like (s = 2/r^2)", "Cylinder-like (s = 1/r^2)"}},
+        {param::fix_boundary, ParameterType::Bool, 0, "fixBoundary: keep open boundaries in place",
+         "Keep the vertices of open boundaries (holes, cut edges) exactly where they are and filter the interior"
+         " relative to them. Off: the paper's free boundary, where open edges move with the surface (a lowpass"
+         " shrinks a hole's rim like the rest of the shape).",
+         {}},
         {param::solver, ParameterType::Enum, 0, "solver",
          "Factored: sparse Cholesky factorisations, exact and fast whatever s1. Jacobi-PCG: the paper's"
          " conjugate-gradient method, slow for small s1 (wide features); kept as a reference.",
@@ -88,7 +93,8 @@ FilterSpec pole_zero() {
     p.push_back({param::feature_corner, ParameterType::Enum, 0, "featureCorner",
                  "Which corner frequency the selected feature sets (it must be in use).", corners});
     for (const auto& shared : second_order_parameters({}))
-        if (shared.name == param::feature_shape || shared.name == param::solver || shared.name == param::tolerance ||
+        if (shared.name == param::feature_shape || shared.name == param::fix_boundary || shared.name == param::solver ||
+            shared.name == param::tolerance ||
             shared.name == param::max_iterations)
             p.push_back(shared);
     return {"GeoFilter: Pole-Zero",

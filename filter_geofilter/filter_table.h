@@ -42,6 +42,7 @@ namespace param {
 inline const std::string s1 = "s1", s2 = "s2", G0 = "G0", G1 = "G1", Ginf = "Ginf";
 inline const std::string use_selection = "useSelection", feature_shape = "featureShape";
 inline const std::string feature_corner = "featureCorner";
+inline const std::string fix_boundary = "fixBoundary";
 inline const std::string solver = "solver", tolerance = "tolerance", max_iterations = "maxIterations";
 inline const std::string zero_prefix = "z", pole_prefix = "p";  // z1..z4, p1..p4
 constexpr int max_pole_zero = 4;

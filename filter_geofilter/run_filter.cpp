@@ -141,8 +141,11 @@ RunOutput run_filter(const FilterSpec& spec, const ParameterValues& values, cons
     if (!(cap >= 1 && cap <= 1e9)) throw Error("maxIterations must be between 1 and 1e9 (got " + num(cap) + ")");
     options.max_iterations = static_cast<int>(cap);
     options.progress = input.progress;
+    options.fix_boundary = value_of(spec, values, param::fix_boundary) != 0;
     out.points = apply_filter(input.points, input.triangles, out.transfer, options, &out.report);
     for (const auto& w : out.report.warnings) out.log.push_back("warning: " + w);
+    if (out.report.fixed_vertices > 0)
+        out.log.push_back(std::to_string(out.report.fixed_vertices) + " boundary vertices kept in place (fixBoundary)");
     std::ostringstream os;
     os.precision(3);
     os << "solver " << solver_name(out.report.solver) << ": " << out.report.active_vertices << " vertices, "

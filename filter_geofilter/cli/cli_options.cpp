@@ -411,7 +411,14 @@ std::string help_text(const FilterSpec* preset) {
     os << "usage: geofilter " << preset->cli_name
        << (measure ? " --select-... INPUT [ELLIPSOID_OUTPUT]\n\n" : " [options] INPUT OUTPUT\n\n");
     os << wrap(plain_text(preset->description), 0);
-    if (!measure) os << wrap("Without --radius or --select-*, the frequencies are used as given.", 0);
+    // The table's texts speak of MeshLab's selection and layers: say what they mean here.
+    if (measure)
+        os << "\n" << wrap("Here the selection is given by --select-sphere, --select-box or --select-stored; the feature is"
+                          " printed, and the ellipsoid written to ELLIPSOID_OUTPUT if given.", 0);
+    else
+        os << "\n" << wrap("Here useSelection is on when --select-sphere, --select-box or --select-stored is given;"
+                          " --radius R does the same for a feature of known radius R. Otherwise the frequencies are"
+                          " used as given.", 0);
     if (!preset->parameters.empty()) os << "\noptions (default in brackets):\n";
     for (const auto& p : preset->parameters) {
         if (!has_own_option(p)) continue;

@@ -30,9 +30,9 @@ extern "C" void on_interrupt(int) {
     std::signal(SIGINT, SIG_DFL);
 }
 
-std::string num(double v) {
+std::string num(double v, int digits = 6) {
     std::ostringstream os;
-    os.precision(6);
+    os.precision(digits);
     os << v;
     return os.str();
 }
@@ -190,7 +190,7 @@ int run(const CliOptions& o) {
         std::cout << "geofilter: " << spec.cli_name << ": " << o.input << " -> " << o.output << ": "
                   << out.report.active_vertices << " vertices filtered; " << design
                   << (feature.known ? "; feature r = " + num(feature.radius) : std::string()) << "; "
-                  << solver_name(out.report.solver) << ", " << num(seconds) << " s" << std::endl;
+                  << solver_name(out.report.solver) << ", " << num(seconds, 3) << " s" << std::endl;
     }
     return 0;
 }

@@ -137,7 +137,19 @@ void write_transfer_plot(const std::string& png_path, const TransferPlot& plot) 
        << "set xlabel 's: eigenvalue of -L (1/length^2); a sphere-like feature of radius r has s = 2/r^2'\n"
        << "set ylabel '|G(s)|: gain of the mode of frequency s'\n"
        << "set xrange [" << s_lo << ":" << s_hi << "]\nset yrange [" << y_lo << ":" << y_hi << "]\n"
-       << "set key outside right top box\n";
+       << "set key below box maxrows 2\nset bmargin 7\n";
+    // Over less than three decades gnuplot labels too few ticks to read the gain off: 1-2-5 steps.
+    if (y_hi / y_lo < 1e3) {
+        gp << "set ytics (";
+        const char* separator = "";
+        for (double decade = std::pow(10.0, std::floor(std::log10(y_lo))); decade < y_hi; decade *= 10)
+            for (double step : {1.0, 2.0, 5.0})
+                if (decade * step >= y_lo && decade * step <= y_hi) {
+                    gp << separator << "'" << decade * step << "' " << decade * step;
+                    separator = ", ";
+                }
+        gp << ")\n";
+    }
     const char* colours[] = {"#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2", "#17becf", "#bcbd22", "#7f7f7f"};
     int n = 0;
     for (const auto& m : plot.markers) {

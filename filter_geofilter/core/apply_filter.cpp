@@ -1,6 +1,8 @@
+#include "boundary.h"
 #include "mesh_prep.h"
 #include "solvers.h"
 
+#include <algorithm>
 #include <chrono>
 
 namespace geofilter {
@@ -41,15 +43,41 @@ Points apply_filter(const Points& points, const Triangles& triangles, const Tran
     report.seconds_assembly = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
     const double size = (mesh.points.colwise().maxCoeff() - mesh.points.colwise().minCoeff()).norm();
-    const detail::FilterProblem problem{laplacian, centred, g, options, size};
-    Eigen::MatrixXd filtered = options.solver == Solver::Factored ? detail::solve_factored(problem, report)
-                                                                   : detail::solve_jacobi_pcg(problem, report);
+    auto solve = [&](const Laplacian& l, const Eigen::MatrixXd& p) {
+        const detail::FilterProblem problem{l, p, g, options, size};
+        return options.solver == Solver::Factored ? detail::solve_factored(problem, report)
+                                                  : detail::solve_jacobi_pcg(problem, report);
+    };
+
+    Eigen::MatrixXd filtered;
+    const std::vector<bool> on_boundary =
+        options.fix_boundary ? boundary_vertices(mesh.triangles, mesh.points.rows()) : std::vector<bool>();
+    report.fixed_vertices = static_cast<int>(std::count(on_boundary.begin(), on_boundary.end(), true));
+    if (report.fixed_vertices == 0) {
+        if (options.fix_boundary) report.warnings.push_back("the mesh has no open boundary: nothing to keep fixed");
+        filtered = solve(laplacian, centred);
+    } else {
+        if (report.fixed_vertices == static_cast<int>(on_boundary.size()))
+            throw Error("every vertex lies on the boundary (a strip one triangle wide): with the boundary fixed there"
+                        " is nothing to filter; turn fixBoundary off");
+        const Eigen::MatrixXd harmonic = harmonic_extension(laplacian, on_boundary, centred);
+        std::vector<bool> interior(on_boundary.size());
+        for (size_t i = 0; i < interior.size(); ++i) interior[i] = !on_boundary[i];
+        Eigen::MatrixXd detail_part(centred.rows() - report.fixed_vertices, 3);
+        for (size_t i = 0, k = 0; i < interior.size(); ++i)
+            if (interior[i]) detail_part.row(static_cast<Eigen::Index>(k++)) = centred.row(i) - harmonic.row(i);
+        const Eigen::MatrixXd detail_filtered = solve(restrict_laplacian(laplacian, interior), detail_part);
+        filtered = centred;  // boundary rows stay exactly as they were
+        for (size_t i = 0, k = 0; i < interior.size(); ++i)
+            if (interior[i]) filtered.row(i) = harmonic.row(i) + detail_filtered.row(static_cast<Eigen::Index>(k++));
+    }
     filtered.rowwise() += centroid;
     if (!filtered.allFinite())
         throw Error("the filter produced non-finite coordinates: the mesh is too degenerate for this filter");
 
     Points result = points;
-    for (size_t i = 0; i < mesh.active_vertex.size(); ++i) result.row(mesh.active_vertex[i]) = filtered.row(i);
+    for (size_t i = 0; i < mesh.active_vertex.size(); ++i)
+        if (on_boundary.empty() || !on_boundary[i]) result.row(mesh.active_vertex[i]) = filtered.row(i);
     report.seconds_total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     detail::report_progress(options, 1.0, "done");
     if (report_out) *report_out = std::move(report);

@@ -31,6 +31,11 @@ struct FilterOptions {
     // fraction of the bounding-box diagonal at every vertex (its CG converges at a rate
     // known from the poles, so the last update bounds the error).
     double accuracy = 1e-7;
+    // Keep vertices on open boundaries where they are. The interior is then filtered as
+    // p' = h + G(L_D) (p - h): h is the harmonic extension of the boundary, L_D the Laplacian
+    // with the boundary fixed (Dirichlet). Off by default: the paper's filter, whose free
+    // (natural) boundary lets open edges move with the surface.
+    bool fix_boundary = false;
     int max_iterations = 100000;   // cap per iterative solve; hitting it is an error
     ProgressCallback progress;
 };
@@ -41,6 +46,7 @@ struct FilterReport {
     int iterations = 0;            // CG iterations, summed over the solves that iterate
     double relative_residual = 0;  // worst relative residual of eq. 9 / the factor solves
     double seconds_assembly = 0, seconds_factorization = 0, seconds_solve = 0, seconds_total = 0;
+    int fixed_vertices = 0;        // boundary vertices kept in place (fix_boundary)
     std::vector<std::string> warnings;  // repairs made to the input, in plain words
 };
 

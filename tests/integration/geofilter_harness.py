@@ -37,6 +37,7 @@ class Param:
 def _tail():
     return [
         Param("featureShape", "RichEnum", 0, 2),
+        Param("fixBoundary", "RichBool", False),
         Param("solver", "RichEnum", 0, 2),
         Param("tolerance", "RichFloat", 1e-10),
         Param("maxIterations", "RichInt", 100000),

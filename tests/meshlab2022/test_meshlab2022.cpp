@@ -1,0 +1,630 @@
+// The MeshLab 2022.02+ plugin driven the way pymeshlab drives it: MeshLab's own
+// PluginManager loads the plugin folders, pymeshlab::FunctionSet (MeshLab's common/python,
+// the table pymeshlab builds its methods from) maps python names to filters, parameters
+// start from initParameterList and are overwritten by value, applyFilter runs with a
+// postCondition mask and a callback, results come back as a QVariant map and errors as
+// MLException. Meshes come from filter_create and from code; files go through io_base.
+//
+// Besides its own checks, the test writes cases (input PLY, parameters, output PLY) to
+// GEOFILTER_TEST_WORKDIR/cases.json, which test_compare_2020.py replays with the 2020.09
+// plugin through meshlabserver.
+
+#include "core/shapes.h"
+#include "filter_table.h"
+
+#include <common/globals.h>
+#include <common/mlexception.h>
+#include <common/plugins/interfaces/filter_plugin.h>
+#include <common/plugins/plugin_manager.h>
+#include <common/python/function_set.h>
+#include <common/utilities/load_save.h>
+
+#include <vcg/complex/algorithms/update/bounding.h>
+#include <vcg/complex/algorithms/update/normal.h>
+#include <vcg/complex/algorithms/update/selection.h>
+
+#include <gtest/gtest.h>
+
+#include <QDir>
+#include <QFileInfo>
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonObject>
+
+#include <cmath>
+#include <cstring>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace {
+
+using geofilter::FilterSpec;
+
+QString qs(const std::string &s) { return QString::fromStdString(s); }
+
+std::string env(const char *name, const char *fallback)
+{
+	const char *v = std::getenv(name);
+	return v && *v ? v : fallback;
+}
+
+// Set by CMake (tests/meshlab2022/CMakeLists.txt); environment overrides are for running by hand.
+const std::string kOurPluginDir = env("GEOFILTER_PLUGIN_DIR", GEOFILTER_PLUGIN_DIR);
+const std::string kMeshLabPluginDir = env("MESHLAB_PLUGIN_DIR", MESHLAB_PLUGIN_DIR);
+const std::string kWorkDir = env("GEOFILTER_TEST_WORKDIR", GEOFILTER_TEST_WORKDIR);
+
+const FilterSpec &tableEntry(const std::string &name)
+{
+	const FilterSpec *s = geofilter::find_filter(name);
+	if (!s) throw std::runtime_error("no table entry " + name);
+	return *s;
+}
+
+// ---------------------------------------------------------------------------------------
+// The host: one PluginManager for the process, as in pymeshlab (meshlab::pluginManagerInstance).
+
+class Host : public ::testing::Environment
+{
+public:
+	void SetUp() override
+	{
+		PluginManager &pm = meshlab::pluginManagerInstance();
+		// MeshLab's own plugins we need (io_base, filter_create), then ours, each folder loaded
+		// whole as MeshLab and pymeshlab do at start; loadPlugins throws if any file fails.
+		for (const std::string &dir : {kMeshLabPluginDir, kOurPluginDir}) {
+			if (!QDir(qs(dir)).exists()) FAIL() << "plugin folder " << dir << " does not exist";
+			try {
+				pm.loadPlugins(QDir(qs(dir)));
+			} catch (const MLException &e) {
+				FAIL() << "loading " << dir << ": " << e.what();
+			}
+		}
+		functions = std::make_unique<pymeshlab::FunctionSet>(pm);
+	}
+	void TearDown() override { functions.reset(); }
+
+	static std::unique_ptr<pymeshlab::FunctionSet> functions;
+};
+std::unique_ptr<pymeshlab::FunctionSet> Host::functions;
+
+struct Found
+{
+	FilterPlugin *plugin = nullptr;
+	QAction *action = nullptr;
+};
+
+// By MeshLab name (menus, scripts) ...
+Found byName(const QString &name)
+{
+	PluginManager &pm = meshlab::pluginManagerInstance();
+	Found f;
+	f.action = pm.filterAction(name);
+	if (f.action) f.plugin = pm.getFilterPluginFromAction(f.action);
+	return f;
+}
+
+// ... and by python name, resolved like MeshSet::applyFilter: FunctionSet -> MeshLab name -> action.
+Found byPythonName(const QString &python)
+{
+	if (!Host::functions->containsFilterFunction(python)) return {};
+	return byName(Host::functions->filterFunction(python).meshlabFunctionName());
+}
+
+struct Run
+{
+	std::map<std::string, QVariant> outputs;
+	unsigned int postConditionMask = MeshModel::MM_UNKNOWN;
+	std::vector<std::pair<int, std::string>> progress;
+	std::vector<std::string> log;
+};
+
+// The progress callback is a plain function pointer (vcg::CallBackPos): collect through a global.
+std::vector<std::pair<int, std::string>> *g_progress = nullptr;
+bool collectProgress(const int pos, const char *str)
+{
+	if (g_progress) g_progress->emplace_back(pos, str ? str : "");
+	return true;
+}
+
+using Values = std::map<std::string, QVariant>;
+
+// What pymeshlab's applyFilter/applyFilterRPL do, minus Python: defaults from
+// initParameterList, given values set by type, requirements, the document state, the call,
+// and compaction of every mesh afterwards.
+Run apply(MeshDocument &md, const Found &f, const Values &values)
+{
+	if (!f.plugin || !f.action) throw std::runtime_error("filter not found");
+	RichParameterList rpl = f.plugin->initParameterList(f.action, md);
+	for (const auto &[name, v] : values) {
+		const QString n = qs(name);
+		if (!rpl.hasParameter(n)) throw std::runtime_error("no parameter " + name);
+		RichParameter &p = rpl.getParameterByName(n);
+		if (p.value().isBool()) p.setValue(BoolValue(v.toBool()));
+		else if (p.value().isInt()) p.setValue(IntValue(v.toInt()));
+		else if (p.value().isFloat()) p.setValue(FloatValue(Scalarm(v.toDouble())));
+		else throw std::runtime_error("unsupported parameter type for " + name);
+	}
+	Run run;
+	if (md.mm() != nullptr) {
+		QStringList missing;
+		if (!f.plugin->isFilterApplicable(f.action, *md.mm(), missing))
+			throw std::runtime_error("filter not applicable: " + missing.join(",").toStdString());
+		md.mm()->updateDataMask(f.plugin->getRequirements(f.action));
+	}
+	md.meshDocStateData().clear();
+	md.meshDocStateData().create(md);
+	const int logStart = md.Log.logStringList().size();
+	f.plugin->setLog(&md.Log);
+	g_progress = &run.progress;
+	struct Reset
+	{
+		FilterPlugin *p;
+		~Reset() { p->setLog(nullptr); g_progress = nullptr; }
+	} reset{f.plugin};
+	run.outputs = f.plugin->applyFilter(f.action, rpl, md, run.postConditionMask, collectProgress);
+	for (MeshModel &mm : md.meshIterator()) vcg::tri::Allocator<CMeshO>::CompactEveryVector(mm.cm);
+	const auto &all = md.Log.logStringList();
+	for (int i = logStart; i < all.size(); ++i) run.log.push_back(all[i].second.toStdString());
+	return run;
+}
+
+Run apply(MeshDocument &md, const std::string &name, const Values &values = {})
+{
+	return apply(md, byName(qs(name)), values);
+}
+
+MeshModel &createSphere(MeshDocument &md, double radius, int subdiv)
+{
+	apply(md, byPythonName("create_sphere"), {{"radius", radius}, {"subdiv", subdiv}});
+	if (md.mm() == nullptr || md.mm()->cm.vn != 10 * (1 << (2 * subdiv)) + 2)
+		throw std::runtime_error("filter_create's sphere is not the expected icosphere");
+	return *md.mm();
+}
+
+MeshModel &addMesh(MeshDocument &md, const geofilter::Mesh &m, const QString &label)
+{
+	MeshModel *mm = md.addNewMesh(QString(), label, true);
+	CMeshO &cm = mm->cm;
+	auto vi = vcg::tri::Allocator<CMeshO>::AddVertices(cm, size_t(m.points.rows()));
+	std::vector<CMeshO::VertexPointer> v;
+	for (Eigen::Index i = 0; i < m.points.rows(); ++i, ++vi) {
+		vi->P() = Point3m(Scalarm(m.points(i, 0)), Scalarm(m.points(i, 1)), Scalarm(m.points(i, 2)));
+		v.push_back(&*vi);
+	}
+	auto fi = vcg::tri::Allocator<CMeshO>::AddFaces(cm, size_t(m.triangles.rows()));
+	for (Eigen::Index i = 0; i < m.triangles.rows(); ++i, ++fi)
+		for (int k = 0; k < 3; ++k) fi->V(k) = v[size_t(m.triangles(i, k))];
+	mm->updateBoxAndNormals();
+	return *mm;
+}
+
+// The same rule as the harness's Conditional Face Selection "(z0 > c) && (z1 > c) && (z2 > c)",
+// evaluated in double on the float coordinates as muparser does.
+int selectCap(CMeshO &cm, double c)
+{
+	int n = 0;
+	for (auto &f : cm.face) {
+		if (f.IsD()) continue;
+		bool in = true;
+		for (int k = 0; k < 3; ++k) in = in && double(f.V(k)->P()[2]) > c;
+		if (in) { f.SetS(); ++n; } else f.ClearS();
+	}
+	return n;
+}
+
+// Everything a filter could touch, bitwise: coordinates, normals, flags, box, counts.
+std::vector<char> meshBytes(const CMeshO &cm)
+{
+	std::vector<char> b;
+	auto put = [&b](const void *p, size_t n) {
+		const char *c = static_cast<const char *>(p);
+		b.insert(b.end(), c, c + n);
+	};
+	put(&cm.vn, sizeof cm.vn);
+	put(&cm.fn, sizeof cm.fn);
+	put(&cm.bbox, sizeof cm.bbox);
+	for (const auto &v : cm.vert) {
+		put(&v.cP(), sizeof(Point3m));
+		put(&v.cN(), sizeof(Point3m));
+		const int flags = v.cFlags();
+		put(&flags, sizeof flags);
+	}
+	for (const auto &f : cm.face) {
+		put(&f.cN(), sizeof(Point3m));
+		const int flags = f.cFlags();
+		put(&flags, sizeof flags);
+	}
+	return b;
+}
+
+struct Snapshot
+{
+	std::vector<std::vector<char>> meshes;
+	explicit Snapshot(MeshDocument &md)
+	{
+		for (MeshModel &mm : md.meshIterator()) meshes.push_back(meshBytes(mm.cm));
+	}
+	bool operator==(const Snapshot &o) const { return meshes == o.meshes; }
+};
+
+double meanRadius(const CMeshO &cm)
+{
+	double sum = 0;
+	int n = 0;
+	for (const auto &v : cm.vert)
+		if (!v.IsD()) { sum += double(v.cP().Norm()); ++n; }
+	return sum / n;
+}
+
+// Eq. 15 of Kim & Rossignac 2005, written from the paper here rather than taken from the
+// core, so that the sphere test checks the core against the paper.
+double eq15(double s, double s1, double s2, double G0, double G1, double Ginf)
+{
+	const double a0 = 1, b0 = G0;
+	const double a2 = -(G0 - G1) / (G1 - Ginf) / (s1 * s1);
+	const double b2 = a2 * Ginf;
+	const double a1 = -(G0 - G1) / (1 - G1) * 2 / s1 - (1 - G0) / (1 - G1) / s2 - a2 * (1 - Ginf) / (1 - G1) * s2;
+	const double b1 = (G0 - G1) / (1 - G1) * (s2 - 2 * s1) / (s1 * s1) - (1 - G0) / (1 - G1) * G1 / s2 - a2 * Ginf * s2;
+	return (b0 + b1 * s + b2 * s * s) / (a0 + a1 * s + a2 * s * s);
+}
+
+const Values kFig6 = {{"s1", 10.0}, {"s2", 25.0}, {"G0", 1.0}, {"G1", 30.0}, {"Ginf", 0.0}, {"useSelection", false}};
+
+// ---------------------------------------------------------------------------------------
+
+TEST(Loading, PluginPassesMeshLabsChecks)
+{
+	// What pymeshlab.load_plugin does first: PluginManager::checkPlugin (Qt plugin, MeshLab
+	// plugin, same version and precision, a class, requirements and conditions per filter).
+	const QString file = QDir(qs(kOurPluginDir)).absoluteFilePath("libfilter_geofilter.so");
+	ASSERT_TRUE(QFileInfo::exists(file)) << file.toStdString();
+	try {
+		MeshLabPluginType type = PluginManager::checkPlugin(file);
+		EXPECT_TRUE(type.isFilterPlugin());
+	} catch (const MLException &e) {
+		FAIL() << e.what();
+	}
+}
+
+TEST(Loading, EveryFilterFoundByNameAndPythonName)
+{
+	ASSERT_FALSE(geofilter::filter_table().empty());
+	for (const FilterSpec &s : geofilter::filter_table()) {
+		SCOPED_TRACE(s.name);
+		const Found n = byName(qs(s.name));
+		ASSERT_NE(n.plugin, nullptr) << "not found by name";
+		EXPECT_EQ(n.plugin->pluginName().toStdString(), "FilterGeoFilter");
+		EXPECT_EQ(n.plugin->pythonFilterName(n.action).toStdString(), s.python_name);
+		EXPECT_EQ(n.plugin->filterInfo(n.action).toStdString(), s.description);
+		EXPECT_EQ(n.plugin->filterArity(n.action), FilterPlugin::SINGLE_MESH);
+		EXPECT_TRUE(n.plugin->getClass(n.action) & FilterPlugin::Smoothing);
+		const Found p = byPythonName(qs(s.python_name));
+		ASSERT_NE(p.plugin, nullptr) << "not found by python name " << s.python_name;
+		EXPECT_EQ(p.action, n.action);
+		// pymeshlab's keyword arguments are MeshLab's parameter names lower-cased.
+		const pymeshlab::Function &fn = Host::functions->filterFunction(qs(s.python_name));
+		EXPECT_EQ(fn.meshlabFunctionName().toStdString(), s.name);
+		EXPECT_EQ(fn.parametersNumber(), s.parameters.size());
+		for (const auto &par : s.parameters)
+			EXPECT_TRUE(fn.contains(qs(par.name).toLower())) << "no python parameter " << par.name;
+	}
+}
+
+TEST(Parameters, MatchTheTableAndUseSelectionFollowsTheSelection)
+{
+	MeshDocument md;
+	MeshModel &m = createSphere(md, 1.0, 3);
+	for (int selected = 0; selected < 2; ++selected) {
+		if (selected) ASSERT_GT(selectCap(m.cm, 0.5), 0);
+		for (const FilterSpec &s : geofilter::filter_table()) {
+			SCOPED_TRACE(s.name + (selected ? " (selection)" : " (no selection)"));
+			const Found f = byName(qs(s.name));
+			const RichParameterList rpl = f.plugin->initParameterList(f.action, md);
+			ASSERT_EQ(rpl.size(), s.parameters.size());
+			for (const auto &p : s.parameters) {
+				ASSERT_TRUE(rpl.hasParameter(qs(p.name))) << p.name;
+				const Value &v = rpl.getParameterByName(qs(p.name)).value();
+				switch (p.type) {
+				case geofilter::ParameterType::Float:
+					ASSERT_TRUE(v.isFloat()) << p.name;
+					EXPECT_EQ(v.getFloat(), Scalarm(p.default_value)) << p.name;
+					break;
+				case geofilter::ParameterType::Bool:
+					ASSERT_TRUE(v.isBool()) << p.name;
+					if (p.name == geofilter::param::use_selection) EXPECT_EQ(v.getBool(), bool(selected));
+					else EXPECT_EQ(v.getBool(), p.default_value != 0) << p.name;
+					break;
+				case geofilter::ParameterType::Int:
+				case geofilter::ParameterType::Enum:
+					ASSERT_TRUE(v.isInt()) << p.name;
+					EXPECT_EQ(v.getInt(), int(p.default_value)) << p.name;
+					break;
+				}
+			}
+		}
+	}
+}
+
+// (a) PAPER-NOTES section 6: icospheres of several radii, Fig. 6's filter, radius ratio
+// within 2% of G(2/r^2).
+TEST(Sphere, Fig6RadiusRatiosFollowEq15)
+{
+	EXPECT_NEAR(eq15(10, 10, 25, 1, 30, 0), 30.0, 1e-9);   // the test's own eq. 15
+	EXPECT_NEAR(eq15(25, 10, 25, 1, 30, 0), 1.0, 1e-9);
+	const std::vector<std::pair<double, int>> cases = {{0.2, 3}, {0.3, 3}, {0.45, 3}, {0.7, 3}, {1.0, 4}, {2.0, 3}};
+	for (const auto &[r, level] : cases) {
+		SCOPED_TRACE("r = " + std::to_string(r));
+		MeshDocument md;
+		MeshModel &m = createSphere(md, r, level);
+		const Run run = apply(md, byPythonName("apply_geofilter_custom"), kFig6);
+		const double ratio = meanRadius(m.cm) / r;
+		const double expected = std::abs(eq15(2 / (r * r), 10, 25, 1, 30, 0));
+		EXPECT_NEAR(ratio / expected, 1.0, 0.02) << "ratio " << ratio << ", G(2/r^2) = " << expected;
+	}
+}
+
+TEST(Sphere, PaperSolverAgrees)
+{
+	MeshDocument md;
+	MeshModel &m = createSphere(md, 0.45, 3);
+	Values v = kFig6;
+	v["solver"] = 1;
+	const Run run = apply(md, "GeoFilter: Custom", v);
+	bool mentioned = false;
+	for (const auto &l : run.log) mentioned = mentioned || l.find("solver Jacobi-PCG") != std::string::npos;
+	EXPECT_TRUE(mentioned);
+	EXPECT_NEAR(meanRadius(m.cm) / 0.45 / std::abs(eq15(2 / (0.45 * 0.45), 10, 25, 1, 30, 0)), 1.0, 0.02);
+}
+
+TEST(Running, LogsProgressesAndReportsWhatChanged)
+{
+	MeshDocument md;
+	MeshModel &m = createSphere(md, 1.0, 3);
+	const Run run = apply(md, byPythonName("apply_geofilter_lowpass"), {{"useSelection", false}});
+	EXPECT_EQ(run.postConditionMask, unsigned(MeshModel::MM_VERTCOORD | MeshModel::MM_VERTNORMAL | MeshModel::MM_FACENORMAL));
+	EXPECT_TRUE(run.outputs.empty());
+	bool peak = false, solver = false;
+	for (const auto &l : run.log) {
+		EXPECT_EQ(l.rfind("GeoFilter: Lowpass: ", 0), 0u) << l;
+		peak = peak || l.find("peak |G|") != std::string::npos;
+		solver = solver || l.find(": solver ") != std::string::npos;
+	}
+	EXPECT_TRUE(peak && solver) << "log lines missing (" << run.log.size() << " lines)";
+	ASSERT_FALSE(run.progress.empty());
+	for (const auto &[pos, text] : run.progress) {
+		EXPECT_GE(pos, 0);
+		EXPECT_LE(pos, 100);
+		EXPECT_EQ(text.rfind("GeoFilter: Lowpass: ", 0), 0u) << text;
+	}
+	// The box and the normals follow the moved vertices.
+	Box3m box;
+	for (const auto &v : m.cm.vert) box.Add(v.cP());
+	EXPECT_EQ(box.min, m.cm.bbox.min);
+	EXPECT_EQ(box.max, m.cm.bbox.max);
+	const auto &v0 = m.cm.vert[0];
+	EXPECT_GT((v0.cN() * v0.cP()) / v0.cP().Norm() / v0.cN().Norm(), Scalarm(0.99));
+}
+
+void expectRefusedUnchanged(MeshDocument &md, const std::string &filter, const Values &values, const std::string &words)
+{
+	const Snapshot before(md);
+	try {
+		apply(md, filter, values);
+		ADD_FAILURE() << filter << " accepted what it should refuse (" << words << ")";
+	} catch (const MLException &e) {
+		EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+		EXPECT_EQ(std::string(e.what()).rfind(filter + ": ", 0), 0u) << e.what();
+	}
+	EXPECT_TRUE(Snapshot(md) == before) << "the document changed although the filter refused";
+}
+
+TEST(Errors, UnstableDesignLeavesTheMeshBitForBitUnchanged)
+{
+	MeshDocument md;
+	createSphere(md, 1.0, 3);
+	// PAPER-NOTES section 4: real roots 18.0 and 52.0 of the denominator.
+	expectRefusedUnchanged(md, "GeoFilter: Custom",
+	                       {{"s1", 25.0}, {"s2", 10.0}, {"G0", 1.0}, {"G1", 3.0}, {"Ginf", 0.0}, {"useSelection", false}},
+	                       "stab");
+}
+
+TEST(Errors, UseSelectionWithoutSelectionIsRefused)
+{
+	MeshDocument md;
+	createSphere(md, 1.0, 3);
+	expectRefusedUnchanged(md, "GeoFilter: Lowpass", {{"useSelection", true}}, "no faces are selected");
+}
+
+TEST(Errors, AmplificationBeyondTheScalarRangeIsRefused)
+{
+	MeshDocument md;
+	createSphere(md, 1.0, 3);
+	// A gain of 1e38 at s = 0 scales the sphere past the 1e37 guard (float range ends at 3.4e38).
+	expectRefusedUnchanged(md, "GeoFilter: Pole-Zero",
+	                       {{"G0", 1e38}, {"z1", 100.0}, {"z2", 0.0}, {"p1", 200.0}, {"p2", 0.0}, {"useSelection", false}},
+	                       "not finite");
+}
+
+TEST(Errors, ParameterOfTheWrongTypeIsNamed)
+{
+	MeshDocument md;
+	createSphere(md, 1.0, 3);
+	const Found f = byName("GeoFilter: Lowpass");
+	RichParameterList rpl = f.plugin->initParameterList(f.action, md);
+	RichParameterList wrong;
+	for (const RichParameter &p : rpl)
+		if (p.name() == "s1") wrong.addParam(RichString("s1", "25"));
+		else wrong.addParam(p);
+	const Snapshot before(md);
+	unsigned int mask = MeshModel::MM_UNKNOWN;
+	try {
+		f.plugin->applyFilter(f.action, wrong, md, mask, nullptr);
+		ADD_FAILURE() << "a string s1 was accepted";
+	} catch (const MLException &e) {
+		EXPECT_NE(std::string(e.what()).find("parameter s1 must be a RichFloat"), std::string::npos) << e.what();
+	}
+	EXPECT_TRUE(Snapshot(md) == before);
+}
+
+TEST(Measure, ReturnsTheEllipsoidAndAddsALayer)
+{
+	MeshDocument md;
+	MeshModel &m = createSphere(md, 1.0, 3);
+	ASSERT_GT(selectCap(m.cm, 0.5), 0);
+	const std::vector<char> before = meshBytes(m.cm);
+	const Run run = apply(md, byPythonName("compute_geofilter_feature_measure"));
+	EXPECT_TRUE(meshBytes(m.cm) == before) << "measuring changed the measured mesh";
+	EXPECT_EQ(run.postConditionMask, unsigned(MeshModel::MM_NONE));
+	ASSERT_EQ(md.meshNumber(), 2u);
+	EXPECT_EQ(md.mm(), &m) << "the measured mesh must stay current";
+	const MeshModel *layer = md.getMesh(1);
+	ASSERT_NE(layer, nullptr);
+	EXPECT_EQ(layer->label().toStdString(), "GeoFilter ellipsoid");
+	EXPECT_EQ(layer->cm.vn, 642);
+
+	for (const char *k : {"centre", "radii", "axes", "radius", "frequencies"})
+		ASSERT_EQ(run.outputs.count(k), 1u) << "no output " << k;
+	// The types pymeshlab's toPyDict converts: Point3m, Matrix33m, double, Eigen::VectorXd.
+	ASSERT_TRUE(run.outputs.at("centre").canConvert<Point3m>());
+	ASSERT_TRUE(run.outputs.at("radii").canConvert<Point3m>());
+	ASSERT_TRUE(run.outputs.at("axes").canConvert<Matrix33m>());
+	ASSERT_EQ(std::string(run.outputs.at("radius").typeName()), "double");
+	ASSERT_TRUE(run.outputs.at("frequencies").canConvert<Eigen::VectorXd>());
+	const Point3m c = run.outputs.at("centre").value<Point3m>();
+	const Point3m radii = run.outputs.at("radii").value<Point3m>();
+	const double r = run.outputs.at("radius").toDouble();
+	const Eigen::VectorXd s = run.outputs.at("frequencies").value<Eigen::VectorXd>();
+	// The cap z > 0.5 of the unit sphere: base radius sqrt(0.75), height 0.5.
+	EXPECT_NEAR(c[0], 0, 0.02);
+	EXPECT_NEAR(c[1], 0, 0.02);
+	EXPECT_NEAR(c[2], 0.75, 0.05);
+	EXPECT_GE(radii[0], radii[1]);
+	EXPECT_GE(radii[1], radii[2]);
+	EXPECT_NEAR(radii[0], std::sqrt(0.75), 0.1);
+	EXPECT_NEAR(radii[2], 0.25, 0.05);
+	EXPECT_NEAR(r, (radii[0] + radii[1]) / 2, 1e-5);
+	ASSERT_EQ(s.size(), 2);
+	EXPECT_NEAR(s[0], 2 / (r * r), 1e-9 * s[0]);
+	EXPECT_NEAR(s[1], 1 / (r * r), 1e-9 * s[1]);
+	bool feature = false;
+	for (const auto &l : run.log) feature = feature || l.rfind("GeoFilter: Measure Selected Feature: feature: ", 0) == 0;
+	EXPECT_TRUE(feature);
+}
+
+TEST(Measure, WithoutSelectionIsRefused)
+{
+	MeshDocument md;
+	createSphere(md, 1.0, 3);
+	expectRefusedUnchanged(md, "GeoFilter: Measure Selected Feature", {}, "no faces are selected");
+}
+
+// ---------------------------------------------------------------------------------------
+// (b) Cases for the comparison with the 2020.09 plugin (test_compare_2020.py).
+
+struct Case
+{
+	std::string tag, filter;
+	std::string input;        // "sphere" (filter_create, r = 1, level 3) or "bumpy" (code)
+	double selectAbove = NAN; // cap selection threshold, or none
+	Values values;            // on top of the table's defaults
+};
+
+std::vector<Case> comparisonCases()
+{
+	std::vector<Case> cases;
+	for (const FilterSpec &s : geofilter::filter_table()) {
+		if (s.kind == geofilter::FilterKind::Measure) continue;
+		std::string tag = s.cli_name;
+		cases.push_back({tag, s.name, "bumpy", NAN, {{"useSelection", false}}});
+	}
+	cases.push_back({"fig6_sphere", "GeoFilter: Custom", "sphere", NAN, kFig6});
+	cases.push_back({"exaggerate_selection", "GeoFilter: Band Exaggeration", "bumpy", 0.6, {{"useSelection", true}}});
+	cases.push_back({"polezero_selection", "GeoFilter: Pole-Zero", "bumpy", 0.6,
+	                 {{"useSelection", true}, {"featureCorner", 4}, {"featureShape", 1}}});
+	cases.push_back({"lowpass_jacobi", "GeoFilter: Lowpass", "bumpy", NAN, {{"useSelection", false}, {"solver", 1}}});
+	cases.push_back({"measure", "GeoFilter: Measure Selected Feature", "bumpy", 0.6, {}});
+	return cases;
+}
+
+QJsonValue json(const QVariant &v)
+{
+	if (v.type() == QVariant::Bool) return v.toBool();
+	if (v.type() == QVariant::Int) return v.toInt();
+	return v.toDouble();
+}
+
+TEST(Comparison, WriteCasesFor2020)
+{
+	const QString dir = qs(kWorkDir);
+	ASSERT_TRUE(QDir().mkpath(dir));
+
+	// Inputs are written once with io_base and read back, so that this run and the 2020.09
+	// run start from the same file.
+	{
+		MeshDocument md;
+		MeshModel &sphere = createSphere(md, 1.0, 3);
+		meshlab::saveMeshWithStandardParameters(dir + "/input-sphere.ply", sphere);
+		geofilter::Mesh bumpy = geofilter::icosphere(4, 1.0);
+		geofilter::perturb_radially(bumpy, 0.02, 11);
+		meshlab::saveMeshWithStandardParameters(dir + "/input-bumpy.ply", addMesh(md, bumpy, "bumpy"));
+	}
+
+	QJsonArray out;
+	for (const Case &c : comparisonCases()) {
+		SCOPED_TRACE(c.tag);
+		MeshDocument md;
+		const QString input = dir + "/input-" + qs(c.input) + ".ply";
+		const std::list<MeshModel *> loaded = meshlab::loadMeshWithStandardParameters(input, md);
+		ASSERT_EQ(loaded.size(), 1u);
+		MeshModel &m = *md.mm();
+		if (!std::isnan(c.selectAbove)) ASSERT_GT(selectCap(m.cm, c.selectAbove), 0);
+
+		Values values;   // every parameter, so that the 2020.09 script states the same ones
+		for (const auto &p : tableEntry(c.filter).parameters) values[p.name] = p.default_value;
+		for (const auto &[k, v] : c.values) values[k] = v;
+		for (const auto &p : tableEntry(c.filter).parameters)
+			if (p.type == geofilter::ParameterType::Bool) values[p.name] = values[p.name].toDouble() != 0;
+			else if (p.type != geofilter::ParameterType::Float) values[p.name] = int(values[p.name].toDouble());
+
+		const Run run = apply(md, c.filter, values);
+		const QString output = dir + "/out2022-" + qs(c.tag) + ".ply";
+		const bool measure = tableEntry(c.filter).kind == geofilter::FilterKind::Measure;
+		// The measure's product is its new layer; filters change the current mesh.
+		meshlab::saveMeshWithStandardParameters(output, measure ? *md.getMesh(1) : m);
+
+		QJsonObject params, results;
+		for (const auto &[k, v] : values) params[qs(k)] = json(v);
+		for (const auto &[k, v] : run.outputs) {
+			if (v.canConvert<Point3m>()) {
+				const Point3m p = v.value<Point3m>();
+				results[qs(k)] = QJsonArray{p[0], p[1], p[2]};
+			} else if (v.canConvert<Eigen::VectorXd>()) {
+				QJsonArray a;
+				for (double x : v.value<Eigen::VectorXd>()) a.append(x);
+				results[qs(k)] = a;
+			} else if (std::string(v.typeName()) == "double") {
+				results[qs(k)] = v.toDouble();
+			}
+		}
+		QJsonObject o{{"tag", qs(c.tag)},     {"filter", qs(c.filter)}, {"input", input},
+		              {"output", output},     {"params", params},       {"results", results},
+		              {"measure", measure},   {"scalar", sizeof(Scalarm) == sizeof(double) ? "double" : "float"}};
+		if (!std::isnan(c.selectAbove)) o["select_above"] = c.selectAbove;
+		out.append(o);
+	}
+	QFile f(dir + "/cases.json");
+	ASSERT_TRUE(f.open(QIODevice::WriteOnly | QIODevice::Truncate));
+	f.write(QJsonDocument(out).toJson());
+}
+
+} // namespace
+
+int main(int argc, char **argv)
+{
+	::testing::InitGoogleTest(&argc, argv);
+	::testing::AddGlobalTestEnvironment(new Host);
+	return RUN_ALL_TESTS();
+}
