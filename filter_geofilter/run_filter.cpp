@@ -22,8 +22,17 @@ double value_of(const FilterSpec& spec, const ParameterValues& values, const std
     return p->default_value;
 }
 
+// An enum parameter's index, refused unless it names one of the choices.
+int choice_of(const FilterSpec& spec, const ParameterValues& values, const std::string& name) {
+    const double v = value_of(spec, values, name);
+    const auto count = static_cast<double>(spec.parameter(name)->choices.size());
+    if (!(v >= 0 && v < count && v == std::floor(v)))
+        throw Error(name + " must be an index from 0 to " + num(count - 1) + " (got " + num(v) + ")");
+    return static_cast<int>(v);
+}
+
 FeatureShape shape_of(const FilterSpec& spec, const ParameterValues& values) {
-    return value_of(spec, values, param::feature_shape) == 1 ? FeatureShape::Cylinder : FeatureShape::Sphere;
+    return choice_of(spec, values, param::feature_shape) == 1 ? FeatureShape::Cylinder : FeatureShape::Sphere;
 }
 
 std::string describe_feature(const FeatureEllipsoid& e) {
@@ -81,8 +90,8 @@ TransferFunction design_from_values(const FilterSpec& spec, const ParameterValue
                 throw Error(name + " must be a finite number >= 0 (got " + num(corners[i]) + "); 0 means unused");
         }
         if (feature) {
-            const int corner = static_cast<int>(value_of(spec, values, param::feature_corner));
-            if (corner < 0 || corner >= static_cast<int>(corners.size()) || corners[corner] == 0)
+            const int corner = choice_of(spec, values, param::feature_corner);
+            if (corners[corner] == 0)
                 throw Error("featureCorner names a corner frequency that is not in use (0): give it a value, its ratio to"
                             " the others is kept");
             const double measured = feature->frequency(shape);
@@ -135,7 +144,7 @@ RunOutput run_filter(const FilterSpec& spec, const ParameterValues& values, cons
     for (const auto& w : response.warnings) out.log.push_back("warning: " + w);
 
     FilterOptions options;
-    options.solver = value_of(spec, values, param::solver) == 1 ? Solver::JacobiPcg : Solver::Factored;
+    options.solver = choice_of(spec, values, param::solver) == 1 ? Solver::JacobiPcg : Solver::Factored;
     options.tolerance = value_of(spec, values, param::tolerance);
     const double cap = value_of(spec, values, param::max_iterations);
     if (!(cap >= 1 && cap <= 1e9)) throw Error("maxIterations must be between 1 and 1e9 (got " + num(cap) + ")");

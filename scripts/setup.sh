@@ -12,6 +12,7 @@ packages=(
     libeigen3-dev libsuitesparse-dev      # the core: Eigen and CHOLMOD
     libopenblas0-pthread                  # a multithreaded BLAS under CHOLMOD (2x faster factorisation)
     libgtest-dev                          # unit tests
+    clang libclang-rt-14-dev              # libFuzzer (scripts/fuzz.sh)
     xvfb xauth                            # meshlabserver needs an X display
     python3-numpy python3-matplotlib      # integration tests, plots and renders
     gnuplot-nox                           # G(s) and benchmark plots

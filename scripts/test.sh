@@ -1,10 +1,25 @@
 #!/usr/bin/env bash
-# The test command: installs what is needed, builds, and runs every test (unit tests,
-# then the meshlabserver integration tests under Xvfb).
+# The test command: installs what is needed, builds, and runs every test:
+#   1. unit tests (GoogleTest, in random order), command-line tool tests, and the
+#      meshlabserver integration tests under Xvfb, on the normal build;
+#   2. the unit and command-line tests again on a build with AddressSanitizer and
+#      UndefinedBehaviorSanitizer.
 set -euo pipefail
 top=$(cd "$(dirname "$0")/.." && pwd)
 build=${GEOFILTER_BUILD_DIR:-$top/build}
 "$top/scripts/setup.sh"
 "$top/scripts/build.sh"
-cd "$build"
-ctest --output-on-failure --timeout 900 "$@"
+
+# No test may depend on the order tests run in.
+export GTEST_SHUFFLE=1
+echo "== tests (build: $build)"
+(cd "$build" && ctest --output-on-failure --timeout 900 "$@")
+
+echo "== unit and command-line tests under AddressSanitizer + UndefinedBehaviorSanitizer"
+asan="$build-asan"
+source_dir=$(sed -n 's/^MESHLAB_SOURCE_DIR:PATH=//p' "$build/CMakeCache.txt")
+cmake -S "$top" -B "$asan" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGEOFILTER_SANITIZE=ON \
+    -DMESHLAB_SOURCE_DIR="$source_dir" -DGEOFILTER_BUILD_PLUGIN=OFF -DGEOFILTER_BUILD_BENCHMARK=OFF >/dev/null
+cmake --build "$asan" -j"$(nproc)"
+(cd "$asan" && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
+    ctest --output-on-failure --timeout 900 -L 'unit|cli')

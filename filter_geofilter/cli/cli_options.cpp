@@ -142,7 +142,7 @@ std::vector<Token> tokenize(const std::vector<std::string>& args) {
     bool options_ended = false;
     for (size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
-        if (options_ended || a.size() < 2 || a[0] != '-' ) {
+        if (options_ended || a.size() < 2 || a[0] != '-') {
             tokens.push_back({"", a});
             continue;
         }
@@ -190,7 +190,10 @@ std::vector<Token> tokenize(const std::vector<std::string>& args) {
 std::string plain_text(const std::string& html) {
     std::string out;
     for (size_t i = 0; i < html.size(); ++i) {
-        if (html[i] == '<') {
+        // Only what looks like a tag: "s < s1" in a help text is prose.
+        const bool tag_start = html[i] == '<' && i + 1 < html.size() &&
+                               (std::isalpha(static_cast<unsigned char>(html[i + 1])) || html[i + 1] == '/');
+        if (tag_start) {
             const size_t close = html.find('>', i);
             if (close != std::string::npos) {
                 i = close;
@@ -427,7 +430,8 @@ std::string help_text(const FilterSpec* preset) {
             for (const auto& k : choice_keywords(p)) values += (values.empty() ? " " : "|") + k;
         else if (p.type != ParameterType::Bool)
             values = " " + std::string(p.type == ParameterType::Int ? "N" : "X");
-        os << "  " << option_for(p.name) << values << "  [" << default_text(p) << "]\n";
+        const std::string negation = p.type == ParameterType::Bool ? ", --no-" + option_for(p.name).substr(2) : "";
+        os << "  " << option_for(p.name) << values << negation << "  [" << default_text(p) << "]\n";
         os << wrap(plain_text(p.help), 6);
     }
     if (preset->parameter(param::zero_prefix + "1"))

@@ -6,10 +6,15 @@
 #include <wrap/io_trimesh/export.h>
 #include <wrap/io_trimesh/import.h>
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
 #include <fstream>
+#include <sstream>
 
 namespace geofilter::cli {
 
@@ -53,6 +58,70 @@ void require_readable(const std::string& path) {
     if (!probe) throw Error("cannot read '" + path + "': no such file or no permission");
     char c;
     if (!probe.get(c)) throw Error("cannot read '" + path + "': the file is empty or not a regular file");
+}
+
+// The vcglib of the MeshLab 2020.09 sources refuses the first vertex of an OBJ face list
+// (its GoodObjIndex rejects the 0 that SplitToken made of "1"; MeshLab issue #791, fixed
+// after that tree was cut): every face around vertex 1 is silently dropped, and Debian's
+// meshlabserver aborts on an assertion. A fixed vcglib accepts index 0 here.
+bool obj_importer_drops_first_vertex() {
+    int index = 0;
+    return !vcg::tri::io::ImporterOBJ<CliMesh>::GoodObjIndex(index, 1);
+}
+
+std::string strip_cr(std::string line) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    return line;
+}
+
+// A copy of the OBJ `path` that this importer reads whole: a duplicate of the first vertex is
+// put in front, so positive face indices move up by one (relative ones already count from
+// the end). Material libraries are pointed at the original's folder. Returns the copy's path.
+std::string obj_copy_with_leading_vertex(const std::string& path) {
+    std::ifstream in(path);
+    std::string first_vertex;
+    for (std::string line; std::getline(in, line);)
+        if (line.rfind("v ", 0) == 0 || line.rfind("v\t", 0) == 0) {
+            first_vertex = strip_cr(line);
+            break;
+        }
+    if (first_vertex.empty()) return path;  // no vertices: nothing to lose, let vcglib report it
+    char name[] = "/tmp/geofilter-obj-XXXXXX.obj";
+    const int fd = mkstemps(name, 4);
+    if (fd < 0) throw Error("cannot read '" + path + "': no room for a temporary copy in /tmp");
+    close(fd);
+    std::ofstream out(name);
+    out << first_vertex << '\n';
+    in.clear();
+    in.seekg(0);
+    const std::string folder = std::filesystem::absolute(path).parent_path().string();
+    for (std::string line; std::getline(in, line);) {
+        line = strip_cr(line);
+        std::istringstream words(line);
+        std::string keyword;
+        words >> keyword;
+        if (keyword == "f") {
+            out << 'f';
+            for (std::string corner; words >> corner;) {
+                const size_t slash = corner.find('/');
+                const long index = std::strtol(corner.substr(0, slash).c_str(), nullptr, 10);
+                out << ' ' << (index > 0 ? std::to_string(index + 1) : corner.substr(0, slash))
+                    << (slash == std::string::npos ? "" : corner.substr(slash));
+            }
+            out << '\n';
+        } else if (keyword == "mtllib") {
+            std::string library;
+            std::getline(words >> std::ws, library);
+            out << "mtllib " << (library.empty() || library[0] == '/' ? library : folder + "/" + library) << '\n';
+        } else {
+            out << line << '\n';
+        }
+    }
+    if (!out) {
+        std::remove(name);
+        throw Error("cannot read '" + path + "': could not write a temporary copy in /tmp");
+    }
+    return name;
 }
 
 // Whatever else a file's flag words hold (deleted, visited, border bits of another
@@ -130,9 +199,21 @@ MeshFile MeshFile::read(const std::string& path) {
     d->format = require_format(path);
     require_readable(path);
     CliMesh& m = d->mesh;
-    const int err = Importer::Open(m, path.c_str(), d->load_mask);
+    const bool shifted_obj = d->format == MeshFormat::Obj && obj_importer_drops_first_vertex();
+    const std::string source = shifted_obj ? obj_copy_with_leading_vertex(path) : path;
+    const int err = Importer::Open(m, source.c_str(), d->load_mask);
+    if (source != path) std::remove(source.c_str());
     if (err != 0 && Importer::ErrorCritical(err))
         throw Error("cannot read '" + path + "' as " + format_name(d->format) + ": " + Importer::ErrorMsg(err));
+    if (source != path && m.vn > 0) {
+        // The leading duplicate: no face may use it, or the shift went wrong.
+        for (const auto& f : m.face)
+            for (int k = 0; k < 3; ++k)
+                if (f.cV(k) == &m.vert[0])
+                    throw Error("internal: reading '" + path + "' through a shifted copy went wrong (face uses vertex 0)");
+        vcg::tri::Allocator<CliMesh>::DeleteVertex(m, m.vert[0]);
+        vcg::tri::Allocator<CliMesh>::CompactEveryVector(m);
+    }
 
     if (d->format == MeshFormat::Stl) {
         const int corners = m.vn;
@@ -147,8 +228,11 @@ MeshFile MeshFile::read(const std::string& path) {
     if (d->has_stored_flags)
         d->notes.push_back("stored face flags: " + std::to_string(d->stored_selection.size()) + " of " +
                            std::to_string(m.fn) + " faces selected");
+    if (d->load_mask & IoMask::IOM_BITPOLYGONAL)
+        d->notes.push_back("the file has polygons: vcglib split them into triangles, and triangles are written");
     // Flags are this session's business: they are written back only as the selection.
-    d->load_mask &= ~(IoMask::IOM_FACEFLAGS | IoMask::IOM_VERTFLAGS);
+    // Polygons would be rebuilt from faux edges, which needs adjacency this mesh type lacks.
+    d->load_mask &= ~(IoMask::IOM_FACEFLAGS | IoMask::IOM_VERTFLAGS | IoMask::IOM_BITPOLYGONAL);
 
     d->points.resize(Eigen::Index(m.vert.size()), 3);
     for (size_t i = 0; i < m.vert.size(); ++i)

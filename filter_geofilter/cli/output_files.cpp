@@ -4,6 +4,8 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -36,8 +38,12 @@ std::string PendingOutputs::reserve(const std::string& destination) {
     if (access(dir.c_str(), W_OK) != 0)
         throw Error("cannot write '" + destination + "': directory " + dir.string() + " is not writable");
     // Hidden, and unique per process and per call, so parallel runs never share one.
+    // vcglib's Exporter misreads an upper-case extension (its tolower stops one short of the
+    // end, so ".PLY" is unknown): the temporary gets it in lower case, the rename restores it.
+    std::string extension = dest.extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return char(std::tolower(c)); });
     const fs::path temporary = dir / ("." + dest.stem().string() + ".geofilter-" + std::to_string(getpid()) + "-" +
-                                      std::to_string(entries_.size()) + dest.extension().string());
+                                      std::to_string(entries_.size()) + extension);
     entries_.push_back({temporary.string(), destination});
     return temporary.string();
 }

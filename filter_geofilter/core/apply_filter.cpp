@@ -4,12 +4,42 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <new>
 
 namespace geofilter {
+
+namespace {
+Points apply_filter_unguarded(const Points& points, const Triangles& triangles, const TransferFunction& g,
+                              const FilterOptions& options, FilterReport* report_out);
+} // namespace
 
 const char* solver_name(Solver solver) {
     return solver == Solver::Factored ? "factored (sparse Cholesky)" : "Jacobi-PCG on eq. 9 (paper)";
 }
+
+double estimated_filter_bytes(Eigen::Index vertices) { return 1500.0 * static_cast<double>(vertices); }
+
+namespace {
+
+double available_memory_bytes() {
+    std::ifstream meminfo("/proc/meminfo");
+    std::string key;
+    double kib = 0;
+    std::string unit;
+    while (meminfo >> key >> kib >> unit)
+        if (key == "MemAvailable:") return kib * 1024.0;
+    return 0;  // unknown: no up-front check
+}
+
+std::string gib(double bytes) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.1f GiB", bytes / (1024.0 * 1024.0 * 1024.0));
+    return text;
+}
+
+} // namespace
 
 namespace detail {
 void report_progress(const FilterOptions& options, double fraction, const std::string& stage) {
@@ -19,6 +49,18 @@ void report_progress(const FilterOptions& options, double fraction, const std::s
 
 Points apply_filter(const Points& points, const Triangles& triangles, const TransferFunction& g,
                     const FilterOptions& options, FilterReport* report_out) {
+    try {
+        return apply_filter_unguarded(points, triangles, g, options, report_out);
+    } catch (const std::bad_alloc&) {
+        throw Error("out of memory while filtering " + std::to_string(points.rows()) +
+                    " vertices: close other programs, or simplify the mesh first");
+    }
+}
+
+namespace {
+
+Points apply_filter_unguarded(const Points& points, const Triangles& triangles, const TransferFunction& g,
+                              const FilterOptions& options, FilterReport* report_out) {
     const auto t0 = std::chrono::steady_clock::now();
     if (!(options.tolerance > 0 && options.tolerance < 1))
         throw Error("the solver tolerance must lie in (0, 1) (got " + std::to_string(options.tolerance) + ")");
@@ -27,6 +69,12 @@ Points apply_filter(const Points& points, const Triangles& triangles, const Tran
     for (const auto& p : g.poles)
         if (p.imag() == 0 && p.real() >= 0)
             throw Error("unstable filter: a pole lies at s = " + std::to_string(p.real()) + " >= 0");
+
+    const double budget = options.memory_budget_bytes > 0 ? options.memory_budget_bytes : available_memory_bytes();
+    if (budget > 0 && estimated_filter_bytes(points.rows()) > budget)
+        throw Error("the mesh is too large for the memory available: filtering " + std::to_string(points.rows()) +
+                    " vertices needs about " + gib(estimated_filter_bytes(points.rows())) + ", only " + gib(budget) +
+                    " is available; simplify the mesh or free memory");
 
     FilterReport report;
     report.solver = options.solver;
@@ -83,5 +131,7 @@ Points apply_filter(const Points& points, const Triangles& triangles, const Tran
     if (report_out) *report_out = std::move(report);
     return result;
 }
+
+} // namespace
 
 } // namespace geofilter

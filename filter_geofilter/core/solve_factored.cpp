@@ -50,6 +50,7 @@ public:
     explicit ShiftedCholesky(const SparseMatrix& kt) : kt_(kt) {
         use_amd_ordering(llt_.cholmod());
         llt_.analyzePattern(kt_);
+        if (llt_.cholmod().status == CHOLMOD_OUT_OF_MEMORY) throw std::bad_alloc();
     }
 
     // Factorises Kt + shift I unless that factor is already held.
@@ -57,6 +58,7 @@ public:
         if (shift == shift_) return;
         llt_.setShift(shift);
         llt_.factorize(kt_);
+        if (llt_.cholmod().status == CHOLMOD_OUT_OF_MEMORY) throw std::bad_alloc();
         if (llt_.info() != Eigen::Success)
             throw Error("the sparse Cholesky factorisation failed (Kt + " + std::to_string(shift) +
                         " I is not positive definite): the mesh has inverted or degenerate faces");

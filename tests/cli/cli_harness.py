@@ -209,19 +209,16 @@ def read_ply(path):
 
 
 def read_off(path):
+    """Vertices and faces of an OFF; anything after a face's indices (its colour) is ignored."""
     with open(path) as f:
-        tokens = [t for line in f for t in line.split("#")[0].split()]
-    if not tokens[0].endswith("OFF"):
+        lines = [l.split("#")[0].split() for l in f]
+    lines = [l for l in lines if l]
+    if not lines[0][0].endswith("OFF"):
         raise ValueError(f"{path}: not an OFF file")
-    nv, nf = int(tokens[1]), int(tokens[2])
-    pos = 4
-    v = np.array(tokens[pos:pos + 3 * nv], float).reshape(-1, 3)
-    pos += 3 * nv
-    faces = []
-    for _ in range(nf):
-        k = int(tokens[pos])
-        faces.append([int(x) for x in tokens[pos + 1:pos + 1 + k]])
-        pos += 1 + k
+    counts = lines[0][1:] if len(lines[0]) > 1 else lines.pop(1)
+    nv, nf = int(counts[0]), int(counts[1])
+    v = np.array([l[:3] for l in lines[1:1 + nv]], float)
+    faces = [[int(x) for x in l[1:1 + int(l[0])]] for l in lines[1 + nv:1 + nv + nf]]
     return MeshData(v, faces)
 
 

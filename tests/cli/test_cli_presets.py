@@ -64,6 +64,30 @@ class PresetTest(unittest.TestCase):
         self.assertEqual(p.returncode, 0, h.describe(p))
         self.assertAlmostEqual(h.log_value(p, r"design: s1 = ([-+.\deE]+)"), 1 / 0.5 ** 2, places=4)
 
+    def test_bool_parameter_forms(self):
+        # fixBoundary, a yes/no table parameter: --fix-boundary, --fix-boundary=no, --no-fix-boundary.
+        keep = ~np.all(self.v[self.f][:, :, 2] > 0.3, axis=1)  # a hole around the north pole
+        faces = self.f[keep]
+        source = os.path.join(self.dir, "open.ply")
+        h.write_ply(source, self.v, faces)
+        edges = np.sort(np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]), axis=1)
+        unique, counts = np.unique(edges, axis=0, return_counts=True)
+        rim = np.unique(unique[counts == 1])
+        self.assertGreater(len(rim), 0)
+        moved = {}
+        for args in (["--fix-boundary"], ["--fix-boundary=yes"], ["--fix-boundary=no"], ["--no-fix-boundary"], []):
+            out = os.path.join(self.dir, "open-out.ply")
+            p = h.run("lowpass", *args, source, out)
+            self.assertEqual(p.returncode, 0, h.describe(p))
+            v = h.read_ply(out).vertices
+            moved[" ".join(args)] = float(np.max(np.abs(v[rim] - self.v[rim])))
+        self.assertLess(moved["--fix-boundary"], 1e-9, moved)
+        self.assertLess(moved["--fix-boundary=yes"], 1e-9, moved)
+        for free in ("--fix-boundary=no", "--no-fix-boundary", ""):
+            self.assertGreater(moved[free], 1e-4, moved)
+        p = h.run("lowpass", "--fix-boundary=maybe", source, os.path.join(self.dir, "x.ply"))
+        self.assertEqual(p.returncode, 2, h.describe(p))
+
     def test_polezero_lists(self):
         out = os.path.join(self.dir, "pz.off")
         p = h.run("polezero", "--zeros", "30", "--poles", "10,90", "--G0", 1, self.off, out)
@@ -83,7 +107,7 @@ class PresetTest(unittest.TestCase):
         p = h.run("lowpass", "--help")
         self.assertEqual(p.returncode, 0, h.describe(p))
         for option in ["--s1", "--s2", "--G0", "--G1", "--Ginf", "--feature-shape sphere|cylinder",
-                       "--solver factored|pcg", "--tolerance", "--max-iterations"]:
+                       "--fix-boundary, --no-fix-boundary", "--solver factored|pcg", "--tolerance", "--max-iterations"]:
             self.assertIn(option, p.stdout)
         p = h.run("polezero", "--help")
         for option in ["--z1", "--z4", "--p1", "--p4", "--feature-corner z1|z2|z3|z4|p1|p2|p3|p4", "--zeros"]:

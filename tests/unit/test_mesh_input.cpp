@@ -84,3 +84,17 @@ TEST(MeshInput, UseSelectionWithNothingSelectedIsRefusedAndNamesTheFix) {
         EXPECT_NE(std::string(e.what()).find("turn useSelection off"), std::string::npos);
     }
 }
+
+TEST(MeshInput, MeshTooLargeForTheMemoryBudgetIsRefusedUpFront) {
+    const Mesh m = icosphere(3);
+    FilterOptions options;
+    options.memory_budget_bytes = 0.5 * estimated_filter_bytes(m.points.rows());
+    try {
+        apply_filter(m.points, m.triangles, design_second_order({25, 50, 1, 1.1, 0}), options);
+        FAIL();
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("too large for the memory available"), std::string::npos) << e.what();
+    }
+    options.memory_budget_bytes = 2 * estimated_filter_bytes(m.points.rows());
+    EXPECT_NO_THROW(apply_filter(m.points, m.triangles, design_second_order({25, 50, 1, 1.1, 0}), options));
+}
