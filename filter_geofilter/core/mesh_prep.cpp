@@ -1,5 +1,6 @@
 #include "mesh_prep.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace geofilter {
@@ -55,6 +56,23 @@ PreparedMesh prepare_mesh(const Points& points, const Triangles& triangles) {
     for (size_t f = 0; f < kept.size(); ++f)
         for (int k = 0; k < 3; ++k) out.triangles(f, k) = compact[triangles(kept[f], k)];
 
+    // Bit-identical positions on different vertices cut the surface into pieces that the
+    // filter then treats separately (an unwelded STL, a split seam): say so.
+    std::vector<int> order(out.active_vertex.size());
+    for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+    auto less = [&](int a, int b) {
+        for (int k = 0; k < 3; ++k)
+            if (out.points(a, k) != out.points(b, k)) return out.points(a, k) < out.points(b, k);
+        return false;
+    };
+    std::sort(order.begin(), order.end(), less);
+    for (size_t i = 1; i < order.size(); ++i)
+        if (!less(order[i - 1], order[i])) ++out.duplicated_vertices;
+    if (out.duplicated_vertices)
+        out.warnings.push_back(std::to_string(out.duplicated_vertices) +
+                               " vertex/vertices duplicate the position of another: the surface is cut there and each"
+                               " side is filtered on its own; weld them first (MeshLab: Cleaning and Repairing > Merge"
+                               " Close Vertices)");
     if (out.degenerate_faces)
         out.warnings.push_back(std::to_string(out.degenerate_faces) +
                                " zero-area face(s) skipped: their cotangent weights are undefined");

@@ -17,6 +17,7 @@ struct PreparedMesh {
     std::vector<int> active_vertex;  // compact index -> input vertex index
     int degenerate_faces = 0;        // skipped: zero area (cotangents undefined)
     int isolated_vertices = 0;       // referenced by no usable face: left in place
+    int duplicated_vertices = 0;     // active vertices sharing another's exact position
     std::vector<std::string> warnings;
 };
 

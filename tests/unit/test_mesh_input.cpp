@@ -98,3 +98,55 @@ TEST(MeshInput, MeshTooLargeForTheMemoryBudgetIsRefusedUpFront) {
     options.memory_budget_bytes = 2 * estimated_filter_bytes(m.points.rows());
     EXPECT_NO_THROW(apply_filter(m.points, m.triangles, design_second_order({25, 50, 1, 1.1, 0}), options));
 }
+
+TEST(MeshInput, NonManifoldEdgesAndVerticesAreFiltered) {
+    // A fin: a third triangle on an edge of a sheet (non-manifold edge), and a second sheet
+    // touching the first at one vertex only (non-manifold vertex).
+    Mesh g = grid(6, 1.0);
+    const Eigen::Index n = g.points.rows();
+    Points p(n + 5, 3);
+    p << g.points, Eigen::RowVector3d(0, 0, 0.4), Eigen::RowVector3d(1.0, 1.0, 0.2), Eigen::RowVector3d(1.0, 0.6, 0.1),
+        Eigen::RowVector3d(0.6, 1.0, -0.1), Eigen::RowVector3d(0.9, 0.9, 0.3);
+    Triangles t(g.triangles.rows() + 3, 3);
+    const int corner = 48;  // (0.5, 0.5), a corner of the grid
+    t << g.triangles, Eigen::RowVector3i(24, 25, int(n)),  // fin on the interior edge 24-25
+        Eigen::RowVector3i(corner, int(n) + 2, int(n) + 1), Eigen::RowVector3i(corner, int(n) + 1, int(n) + 3);
+    FilterReport report;
+    const Points out = apply_filter(p, t, design_second_order({25, 50, 1, 1.1, 0}), {}, &report);
+    EXPECT_TRUE(out.allFinite());
+    EXPECT_EQ(out.row(n + 4), p.row(n + 4));  // unreferenced: stays
+    EXPECT_GT((out - p).rowwise().norm().maxCoeff(), 1e-3);
+}
+
+TEST(MeshInput, DuplicatedVerticesAreReportedAndFilteredAsCut) {
+    // An icosphere whose faces each have their own three corners (an unwelded STL).
+    const Mesh s = icosphere(2, 1.0);
+    Points p(s.triangles.rows() * 3, 3);
+    Triangles t(s.triangles.rows(), 3);
+    for (Eigen::Index f = 0; f < s.triangles.rows(); ++f)
+        for (int k = 0; k < 3; ++k) {
+            p.row(3 * f + k) = s.points.row(s.triangles(f, k));
+            t(f, k) = int(3 * f + k);
+        }
+    FilterReport report;
+    apply_filter(p, t, design_second_order({25, 50, 1, 1.1, 0}), {}, &report);
+    ASSERT_FALSE(report.warnings.empty());
+    EXPECT_NE(report.warnings[0].find("duplicate the position"), std::string::npos) << report.warnings[0];
+    EXPECT_NE(report.warnings[0].find(std::to_string(p.rows() - s.points.rows()) + " vertex"), std::string::npos);
+}
+
+TEST(MeshInput, SelectionSpanningSeveralComponentsIsMeasuredAsOneRegion) {
+    // Two unit spheres 4 apart, both selected: one region of extent 6 x 2 x 2.
+    const Mesh a = icosphere(2, 1.0);
+    Mesh both;
+    both.points.resize(2 * a.points.rows(), 3);
+    both.points << a.points, (a.points.rowwise() + Eigen::RowVector3d(4, 0, 0));
+    both.triangles.resize(2 * a.triangles.rows(), 3);
+    both.triangles << a.triangles, (a.triangles.array() + int(a.points.rows())).matrix();
+    std::vector<int> all(both.triangles.rows());
+    for (size_t i = 0; i < all.size(); ++i) all[i] = int(i);
+    const FeatureEllipsoid e = measure_feature(both.points, both.triangles, all);
+    EXPECT_NEAR(e.radii[0], 3.0, 0.01);
+    EXPECT_NEAR(e.radius, 1.0, 0.02);  // the round cross-section of the pair
+    EXPECT_NEAR(e.center[0], 2.0, 1e-9);
+}
