@@ -158,7 +158,11 @@ RunOutput run_filter(const FilterSpec& spec, const ParameterValues& values, cons
     std::ostringstream os;
     os.precision(3);
     os << "solver " << solver_name(out.report.solver) << ": " << out.report.active_vertices << " vertices, "
-       << out.report.iterations << " CG iterations, relative residual " << out.report.relative_residual << "; time "
+       << out.report.iterations << " CG iterations, relative residual " << out.report.relative_residual;
+    if (out.report.stopped_at_accuracy > 0)
+        os << " (stopped once the estimated error was below " << out.report.stopped_at_accuracy
+           << " of the bounding-box diagonal)";
+    os << "; time "
        << out.report.seconds_total << " s (assembly " << out.report.seconds_assembly << ", factorisation "
        << out.report.seconds_factorization << ", solve " << out.report.seconds_solve << ")";
     out.log.push_back(os.str());

@@ -91,7 +91,7 @@ def main():
         v, f = read_mesh(path)
         draw(ax, v, f, rotation, title or os.path.basename(path))
     fig.tight_layout()
-    fig.savefig(args.out, dpi=110)
+    fig.savefig(args.out, dpi=110, bbox_inches="tight", pad_inches=0.1)  # tall meshes: keep the titles
     print(f"wrote {args.out}")
 
 

@@ -53,6 +53,9 @@ struct FilterReport {
     int active_vertices = 0;
     int iterations = 0;            // CG iterations, summed over the solves that iterate
     double relative_residual = 0;  // worst relative residual of eq. 9 / the factor solves
+    // Set when the factored solver stopped on its error estimate (FilterOptions::accuracy)
+    // before the residual reached the tolerance.
+    double stopped_at_accuracy = 0;
     double seconds_assembly = 0, seconds_factorization = 0, seconds_solve = 0, seconds_total = 0;
     int fixed_vertices = 0;        // boundary vertices kept in place (fix_boundary)
     std::vector<std::string> warnings;  // repairs made to the input, in plain words

@@ -52,6 +52,7 @@ PcgOutcome block_pcg(const BlockOperator& apply_matrix, const BlockOperator& app
         }
         if (outcome.relative_residual <= tolerance || small_steps >= 2) {
             outcome.converged = true;
+            outcome.converged_by_step = outcome.relative_residual > tolerance;
             return outcome;
         }
         if (observer && (it % 16 == 0) && !observer(it, outcome.relative_residual)) {

@@ -16,6 +16,7 @@ struct PcgOutcome {
     int iterations = 0;
     double relative_residual = 0;  // max over columns of |b - A x| / |b| (recurrence residual)
     bool converged = false;
+    bool converged_by_step = false;  // stopped by `step_small`, not by the residual
     bool cancelled = false;
 };
 

@@ -145,6 +145,7 @@ public:
             [&](int, double) { return !options.progress || options.progress(progress, "solving"); }, small);
         report_.iterations += outcome.iterations;
         report_.relative_residual = std::max(report_.relative_residual, outcome.relative_residual);
+        if (outcome.converged_by_step) report_.stopped_at_accuracy = problem_.options.accuracy;
         if (outcome.cancelled) throw Error("cancelled by the user");
         if (!outcome.converged)
             throw Error("the solver did not converge in " + std::to_string(outcome.iterations) +

@@ -1,0 +1,231 @@
+"""Shared by compare_taubin.py, reproduce_fig6.py and reproduce_figures.py.
+
+meshlabserver scripts are built with the integration-test harness
+(tests/integration/geofilter_harness.py), which lists every GeoFilter parameter; this module
+adds the MeshLab built-in filters the experiments need, a few mesh measures (normals, volume,
+edge length) and the G(s) plot.
+"""
+import os
+import re
+import sys
+import time
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+TOP = os.path.dirname(HERE)
+sys.path.insert(0, os.path.join(TOP, "tests", "integration"))
+sys.path.insert(0, HERE)
+import geofilter_harness as h  # noqa: E402
+from render_meshes import read_off  # noqa: E402,F401  (re-exported for the scripts)
+
+P = h.Param
+MESHES_DIR = os.path.join(TOP, "meshes")
+
+
+# ---------------------------------------------------------------------------------------------
+# MeshLab 2020.09 built-in filters, with every parameter (names from the filter_unsharp,
+# filter_select and filter_layer sources of 2020.09).
+
+def select_none():
+    # Taubin and HC Laplacian smooth only the selected faces whenever some are selected,
+    # whatever their "Selected" flag says: clear the selection so they smooth everything.
+    return h.Step("Select None", [(P("allFaces", "RichBool", True), True), (P("allVerts", "RichBool", True), True)])
+
+
+def taubin(steps, lam=0.5, mu=-0.53):
+    """Taubin's lambda|mu smoothing with uniform (umbrella) weights; one step = a lambda and a mu pass."""
+    return h.Step("Taubin Smooth", [(P("lambda", "RichFloat", 0.5), lam), (P("mu", "RichFloat", -0.53), mu),
+                                    (P("stepSmoothNum", "RichInt", 10), steps),
+                                    (P("Selected", "RichBool", False), False)])
+
+
+def laplacian(steps, cotangent=True):
+    """VCG's Laplacian: each step moves a vertex to (p + sum w_j p_j) / (1 + sum w_j)."""
+    return h.Step("Laplacian Smooth", [(P("stepSmoothNum", "RichInt", 3), steps),
+                                       (P("Boundary", "RichBool", True), True),
+                                       (P("cotangentWeight", "RichBool", True), cotangent),
+                                       (P("Selected", "RichBool", False), False)])
+
+
+def hc_laplacian():
+    """One iteration of Vollmer et al.'s HC smoothing (the filter has no parameter: repeat it)."""
+    return h.Step("HC Laplacian Smooth", [])
+
+
+def duplicate_layer():
+    """Copies the current layer into a new layer, which becomes the current one."""
+    return h.Step("Duplicate Current layer", [])
+
+
+def current_layer(position):
+    """Makes layer `position` (order of creation, as -l counts) the current one."""
+    return h.Step("Change the current layer", [(P("layer", "RichMesh", 0), position)])
+
+
+# ---------------------------------------------------------------------------------------------
+# GeoFilter steps that match the installed plugin
+
+_declared = None
+
+
+def _declared_labels():
+    """Parameter labels per filter, from `meshlabserver -d` of the installed prefix."""
+    global _declared
+    if _declared is None:
+        import tempfile
+        with tempfile.TemporaryDirectory(prefix="geofilter-dump-") as d:
+            text = h.dump_filters(d)
+        _declared = {}
+        for m in re.finditer(r"\\section f\d+ (.*?) \n(.*?)(?=\\section|\Z)", text, re.S):
+            _declared[m.group(1).strip()] = re.findall(r"<TR><TD> \\c \w+ +</TD> <TD> (.*?) </TD>", m.group(2))
+    return _declared
+
+
+def geofilter(name, **values):
+    """The harness's GeoFilter step, restricted to the parameters the installed plugin declares.
+
+    The harness follows the source tree; the prefix in build/ may hold a plugin built from an
+    older tree with fewer parameters, and meshlabserver 2020.09 refuses a script with extra
+    ones. A parameter is dropped only when it is left at its default, so no setting is lost.
+    """
+    step = h.geofilter(name, **values)
+    labels = _declared_labels().get(name)
+    if labels is None:
+        raise SystemExit(f"the installed plugin has no filter '{name}': rebuild it (scripts/build.sh)")
+    # Every GeoFilter label is the parameter name, alone or followed by ": ...".
+    declared = {lab.split(":")[0].strip() for lab in labels}
+    kept = []
+    for p, v in step.params:
+        if p.name in declared:
+            kept.append((p, v))
+        elif v != p.default:
+            raise SystemExit(f"the installed plugin's '{name}' has no parameter {p.name}: rebuild it")
+    step.params = kept
+    return step
+
+
+def run(workdir, steps, inputs=(), outputs=(), name="script", timeout=600):
+    """Runs meshlabserver; returns (Run, wall seconds). Fails loudly on a non-zero exit."""
+    t = time.perf_counter()
+    r = h.run_meshlabserver(workdir, steps, inputs=inputs, outputs=outputs, timeout=timeout,
+                            script_name=name + ".mlx")
+    wall = time.perf_counter() - t
+    if r.returncode != 0:
+        raise SystemExit(f"meshlabserver failed ({name}):\n" + r.describe())
+    return r, wall
+
+
+def geofilter_times(r):
+    """The GeoFilter solver's own timings ("...; time 1.12 s (assembly ...") in log order."""
+    return [float(m.group(1)) for line in r.log for m in [re.search(r"; time ([0-9.eE+-]+) s", line)] if m]
+
+
+# ---------------------------------------------------------------------------------------------
+# Mesh measures
+
+def face_normals(v, f, unit=True):
+    n = np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]])
+    if unit:
+        n /= np.maximum(np.linalg.norm(n, axis=1, keepdims=True), 1e-300)
+    return n
+
+
+def vertex_normals(v, f):
+    """Area-weighted vertex normals (sum of the unnormalised face normals)."""
+    fn = face_normals(v, f, unit=False)
+    n = np.zeros_like(v)
+    for k in range(3):
+        np.add.at(n, f[:, k], fn)
+    return n / np.maximum(np.linalg.norm(n, axis=1, keepdims=True), 1e-300)
+
+
+def signed_volume(v, f):
+    """Divergence theorem; the volume enclosed only when the mesh is closed and oriented."""
+    t = v[f]
+    return float(np.einsum("ij,ij->i", t[:, 0], np.cross(t[:, 1], t[:, 2])).sum() / 6.0)
+
+
+def edges(f):
+    e = np.sort(np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]]), axis=1)
+    return np.unique(e, axis=0, return_counts=True)
+
+
+def is_closed(f):
+    _, counts = edges(f)
+    return bool(np.all(counts == 2))
+
+
+def mean_edge_length(v, f):
+    e, _ = edges(f)
+    return float(np.linalg.norm(v[e[:, 0]] - v[e[:, 1]], axis=1).mean())
+
+
+def bbox_diagonal(v):
+    return float(np.linalg.norm(v.max(0) - v.min(0)))
+
+
+# ---------------------------------------------------------------------------------------------
+# The designed response
+
+def plot_gains(ax, designs, s_range, marks=()):
+    """log-log |G(s)| of eq. 15 for each (label, dict(s1, s2, G0, G1, Ginf)), s1 and s2 marked.
+
+    Where G < 0 a curve turns dashed (a log axis cannot show the sign, and a flipped band is what
+    a user must not miss); each curve's maximum |G| is dotted. marks: extra (s, label) lines,
+    e.g. the mesh's sampling limit."""
+    colors = ["tab:blue", "tab:red", "tab:green", "tab:purple"]
+    s = np.geomspace(*s_range, 3000)
+    for (label, p), col in zip(designs, colors):
+        g = h.eq15_gain(s, p["s1"], p["s2"], p["G0"], p["G1"], p["Ginf"])
+        a = np.abs(g)
+        ax.loglog(s, np.where(g >= 0, a, np.nan), "-", color=col, lw=1.6, label=label)
+        if np.any(g < 0):
+            ax.loglog(s, np.where(g < 0, a, np.nan), "--", color=col, lw=1.6, label=label + ": G < 0 (flipped)")
+        k = int(np.argmax(a))
+        ax.plot(s[k], a[k], "o", color=col, ms=4)
+        for x, name in ((p["s1"], "s1"), (p["s2"], "s2")):
+            ax.axvline(x, color=col, lw=0.7, ls=":")
+            ax.text(x, 0.98, name, color=col, fontsize=7, rotation=90, va="top", ha="right",
+                    transform=ax.get_xaxis_transform())
+    for x, name in marks:
+        if s_range[0] < x < s_range[1]:  # a label outside the axes would land on the neighbour panel
+            ax.axvline(x, color="0.4", lw=1.0, ls="-.")
+            ax.text(x, 0.5, name, color="0.3", fontsize=7, rotation=90, va="center", ha="right",
+                    transform=ax.get_xaxis_transform())
+    ax.axhline(1.0, color="0.6", lw=0.8)
+    ax.set_xlim(*s_range)
+    lo, hi = ax.get_ylim()
+    ax.set_ylim(min(lo, 0.1), max(hi, 3.0))  # at least a decade and a half, so the ticks read
+    ax.set_xlabel("s (1/length², mesh units)")
+    ax.set_ylabel("|G(s)|")
+    ax.grid(True, which="both", alpha=0.25)
+    # Below the axes: inside, it would hide curves or the s1/s2 labels whatever the corner.
+    ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=2, frameon=False)
+
+
+def _segment_distance(p, a, b):
+    ab = b - a
+    t = np.clip(np.einsum("...j,...j->...", p - a, ab) / np.maximum(np.einsum("...j,...j->...", ab, ab), 1e-300), 0, 1)
+    return np.linalg.norm(p - (a + t[..., None] * ab), axis=-1)
+
+
+def distance_to_surface(points, v, f, k=16):
+    """Distance from each point to the triangle mesh (v, f): exact point-triangle distances to the
+    k triangles whose centroids are nearest. Exact whenever the closest triangle is among them,
+    which holds for points within about an edge length of a reasonably shaped mesh."""
+    from scipy.spatial import cKDTree
+    tri = v[f]
+    _, cand = cKDTree(tri.mean(axis=1)).query(points, k=k)
+    a, b, cc = tri[cand, 0], tri[cand, 1], tri[cand, 2]  # (n, k, 3)
+    p = points[:, None, :]
+    n = np.cross(b - a, cc - a)
+    n /= np.maximum(np.linalg.norm(n, axis=-1, keepdims=True), 1e-300)
+    dist_plane = np.einsum("...j,...j->...", p - a, n)
+    q = p - dist_plane[..., None] * n  # projection on the triangle's plane
+    # Inside when q is on the inner side of all three edges.
+    inside = np.ones(q.shape[:2], dtype=bool)
+    for u, w in ((a, b), (b, cc), (cc, a)):
+        inside &= np.einsum("...j,...j->...", np.cross(w - u, q - u), n) >= 0
+    edge = np.minimum(np.minimum(_segment_distance(p, a, b), _segment_distance(p, b, cc)), _segment_distance(p, cc, a))
+    return np.where(inside, np.abs(dist_plane), edge).min(axis=1)
