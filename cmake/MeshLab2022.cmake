@@ -76,9 +76,10 @@ if(MESHLAB_BUILD_DIR)
       if(_l MATCHES "DOUBLE_SCALAR:BOOL=(.*)$")
         set(_ml_cache_double "${CMAKE_MATCH_1}")
       elseif(_l MATCHES "^MeshLab_SOURCE_DIR:STATIC=(.*)$")
+        # The project is src/ in 2022.02 and the top folder from 2023.12 on.
         get_filename_component(_built_from "${CMAKE_MATCH_1}" REALPATH)
-        get_filename_component(_given "${MESHLAB_SOURCE_DIR}/src" REALPATH)
-        if(NOT _built_from STREQUAL _given)
+        get_filename_component(_given "${MESHLAB_SOURCE_DIR}" REALPATH)
+        if(NOT _built_from STREQUAL _given AND NOT _built_from STREQUAL "${_given}/src")
           message(WARNING "MeshLab2022: ${MESHLAB_BUILD_DIR} was built from ${_built_from}, "
                           "not from MESHLAB_SOURCE_DIR=${MESHLAB_SOURCE_DIR}: the headers must match the library")
         endif()
@@ -189,6 +190,13 @@ target_compile_definitions(meshlab_common_2022 INTERFACE ${_ml_defs})
 target_compile_features(meshlab_common_2022 INTERFACE cxx_std_14)
 target_link_libraries(meshlab_common_2022 INTERFACE
   Eigen3::Eigen Qt5::Core Qt5::Gui Qt5::Widgets Qt5::OpenGL Qt5::Xml Qt5::Network OpenGL::GL)
+
+# Outputs as INTERNAL cache entries (recomputed every configure): tests/ needs them too and
+# is not below the directory that includes this file.
+foreach(_v MESHLAB_2022_COMMON_LIBRARY MESHLAB_2022_VERSION MESHLAB_2022_SCALAR MESHLAB_2022_PLUGIN_DIR
+           MESHLAB_2022_DISTRIB_DIR)
+  set(${_v} "${${_v}}" CACHE INTERNAL "computed by cmake/MeshLab2022.cmake")
+endforeach()
 
 message(STATUS "MeshLab2022: MeshLab ${MESHLAB_2022_VERSION} (${MESHLAB_2022_SCALAR}) from ${MESHLAB_SOURCE_DIR}, "
                "library ${MESHLAB_2022_COMMON_LIBRARY}")

@@ -3,9 +3,11 @@
 # (libmeshlab-common, the meshlab GUI, plugins io_base, filter_create, filter_select,
 # filter_unsharp) from Debian trixie's source package, once per machine.
 #
-#   build-meshlab-2022.sh [--double]
+#   build-meshlab-2022.sh [--double] [--suite SUITE]
 #     --double   MeshLab with double-precision scalars (BUILD_WITH_DOUBLE_SCALAR), as
 #                pymeshlab 2025.7 is built; kept in its own build folder.
+#     --suite    another Debian suite's MeshLab (default trixie: 2022.02; sid had 2025.07),
+#                to check the plugin against a later FilterPlugin release.
 #
 # Environment: GEOFILTER_CACHE_DIR  where sources and builds are kept (default
 #                /var/cache/geofilter when writable, else ${XDG_CACHE_HOME:-~/.cache}/geofilter)
@@ -14,12 +16,14 @@
 set -euo pipefail
 top=$(cd "$(dirname "$0")/.." && pwd)
 
-scalar=float
-for a in "$@"; do
-    case "$a" in
+scalar=float suite=trixie
+while [ $# -gt 0 ]; do
+    case "$1" in
         --double) scalar=double ;;
-        *) echo "usage: $0 [--double]" >&2; exit 2 ;;
+        --suite) suite=${2:?--suite needs a Debian suite}; shift ;;
+        *) echo "usage: $0 [--double] [--suite SUITE]" >&2; exit 2 ;;
     esac
+    shift
 done
 jobs=${GEOFILTER_JOBS:-2}
 
@@ -38,8 +42,9 @@ plugins=(io_base filter_create filter_select filter_unsharp)
 targets=(meshlab-common meshlab "${plugins[@]}" copy-distrib-files)
 plugin_dirs=$(printf 'meshlabplugins/%s;' "${plugins[@]}"); plugin_dirs=${plugin_dirs%;}
 
-fetch_dest=$cache/meshlab-trixie-source
-build=$cache/meshlab-2022-$scalar-build
+fetch_dest=$cache/meshlab-$suite-source
+label=$suite; [ "$suite" = trixie ] && label=2022
+build=$cache/meshlab-$label-$scalar-build
 stamp=$build/.geofilter-build-complete
 # Everything that changes the result; a stamp with another signature means rebuild.
 signature="targets=${targets[*]} plugins=$plugin_dirs scalar=$scalar script=2"
@@ -51,10 +56,12 @@ report() {
 
 complete() {
     [ -f "$stamp" ] && [ "$(sed -n 2p "$stamp")" = "$signature" ] || return 1
-    local src; src=$(sed -n 1p "$stamp")
+    local src d; src=$(sed -n 1p "$stamp")
     [ -f "$src/src/common/plugins/interfaces/filter_plugin.h" ] || return 1
-    [ -x "$build/distrib/meshlab" ] && [ -f "$build/distrib/libmeshlab-common.so" ] || return 1
-    for p in "${plugins[@]}"; do [ -f "$build/distrib/plugins/lib$p.so" ] || return 1; done
+    # MeshLab's project is src/ in 2022.02, the top folder (building into src/) from 2023.12.
+    d=$build/distrib; [ -d "$d" ] || d=$build/src/distrib
+    [ -x "$d/meshlab" ] && [ -f "$d/libmeshlab-common.so" ] || return 1
+    for p in "${plugins[@]}"; do [ -f "$d/plugins/lib$p.so" ] || return 1; done
 }
 
 if complete; then
@@ -88,24 +95,28 @@ if [ ${#missing[@]} -gt 0 ]; then
     DEBIAN_FRONTEND=noninteractive apt-get install -y -q "${missing[@]}" >&2
 fi
 
-src=$("$top/scripts/fetch-debian-source.sh" meshlab trixie "$fetch_dest" | tail -n1)
+src=$("$top/scripts/fetch-debian-source.sh" meshlab "$suite" "$fetch_dest" | tail -n1)
 if [ ! -f "$src/src/common/plugins/interfaces/filter_plugin.h" ]; then
     echo "build-meshlab-2022: $src is not a MeshLab 2022+ tree (no src/common/plugins/interfaces/filter_plugin.h)" >&2
     exit 1
 fi
 ver=$(tr -d ' \n' <"$src/ML_VERSION")
-[ "$ver" = 2022.02 ] || echo "build-meshlab-2022: NOTE: trixie has MeshLab $ver, not 2022.02; building that" >&2
+[ "$suite" != trixie ] || [ "$ver" = 2022.02 ] ||
+    echo "build-meshlab-2022: NOTE: trixie has MeshLab $ver, not 2022.02; building that" >&2
+project=$src; [ -f "$project/CMakeLists.txt" ] || project=$src/src
 
 double=OFF; [ "$scalar" = double ] && double=ON
 start=$(date +%s)
 rm -f "$stamp"
-# ALLOW_OPTIONAL_EXTERNAL_MESHLAB_LIBRARIES=OFF skips every optional bundled library
-# (CGAL, libigl, levmar, u3d, ...): none of the chosen plugins uses one.
-nice cmake -S "$src/src" -B "$build" -DCMAKE_BUILD_TYPE=Release \
+# The optional external libraries (CGAL, libigl, levmar, u3d, ...; downloads from 2023.12 on)
+# are off: none of the chosen plugins uses one. Options are given under both spellings
+# (2022.02's, and 2023.12's MESHLAB_/VCG_ prefixed ones); each release ignores the other's.
+nice cmake -S "$project" -B "$build" -DCMAKE_BUILD_TYPE=Release --no-warn-unused-cli \
     -DMESHLAB_PLUGINS="$plugin_dirs" \
-    -DALLOW_OPTIONAL_EXTERNAL_MESHLAB_LIBRARIES=OFF \
-    -DALLOW_BUNDLED_EIGEN=OFF -DALLOW_BUNDLED_GLEW=OFF \
-    -DBUILD_WITH_DOUBLE_SCALAR=$double >&2
+    -DALLOW_OPTIONAL_EXTERNAL_MESHLAB_LIBRARIES=OFF -DMESHLAB_ALLOW_OPTIONAL_EXTERNAL_LIBRARIES=OFF \
+    -DALLOW_BUNDLED_EIGEN=OFF -DVCG_ALLOW_BUNDLED_EIGEN=OFF \
+    -DALLOW_BUNDLED_GLEW=OFF -DMESHLAB_ALLOW_BUNDLED_SOURCE_GLEW=OFF \
+    -DBUILD_WITH_DOUBLE_SCALAR=$double -DMESHLAB_BUILD_WITH_DOUBLE_SCALAR=$double >&2
 nice cmake --build "$build" -j"$jobs" --target "${targets[@]}" >&2
 printf '%s\n%s\n' "$src" "$signature" >"$stamp"
 complete || { echo "build-meshlab-2022: build finished but outputs are missing in $build/distrib" >&2; exit 1; }

@@ -14,6 +14,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <cstring>
+#include <iterator>
 #include <sstream>
 
 namespace geofilter::cli {
@@ -31,7 +33,12 @@ class CliVertex : public vcg::Vertex<CliUsedTypes, vcg::vertex::Coord3d, vcg::ve
                                      vcg::vertex::Qualityd, vcg::vertex::TexCoord2d, vcg::vertex::BitFlags> {};
 class CliFace : public vcg::Face<CliUsedTypes, vcg::face::VertexRef, vcg::face::Normal3d, vcg::face::Color4b,
                                  vcg::face::Qualityd, vcg::face::BitFlags> {};
-class CliMesh : public vcg::tri::TriMesh<std::vector<CliVertex>, std::vector<CliFace>> {};
+class CliMesh : public vcg::tri::TriMesh<std::vector<CliVertex>, std::vector<CliFace>> {
+public:
+    // This vcglib's ~TriMesh leaves the attributes that importers add (OBJ materials) behind:
+    // LeakSanitizer reports them. Free them here.
+    ~CliMesh() { ClearAttributes(); }
+};
 
 using Importer = vcg::tri::io::Importer<CliMesh>;
 using Exporter = vcg::tri::io::Exporter<CliMesh>;
@@ -189,6 +196,53 @@ const char* format_name(MeshFormat format) {
 
 const char* supported_formats() { return "PLY, OBJ, OFF or STL (.ply, .obj, .off, .stl)"; }
 
+namespace {
+
+// STL is read here rather than by vcglib: this vcglib's STL importer runs strlen over the
+// unterminated 80-byte header (AddressSanitizer: stack-buffer-overflow) and trusts the
+// triangle count of a truncated binary file. Binary when the size matches the count in
+// the header exactly, ASCII ("solid ... vertex x y z ...") otherwise.
+void read_stl(CliMesh& m, const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    const std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::vector<vcg::Point3f> corners;
+    uint32_t count = 0;
+    if (bytes.size() >= 84) std::memcpy(&count, bytes.data() + 80, sizeof count);
+    if (bytes.size() >= 84 && bytes.size() == 84 + 50 * static_cast<uint64_t>(count)) {
+        corners.reserve(size_t(count) * 3);
+        for (uint32_t t = 0; t < count; ++t) {
+            const char* facet = bytes.data() + 84 + 50 * size_t(t);
+            for (int k = 0; k < 3; ++k) {
+                float xyz[3];
+                std::memcpy(xyz, facet + 12 + 12 * k, sizeof xyz);  // skip the stored normal
+                corners.emplace_back(xyz[0], xyz[1], xyz[2]);
+            }
+        }
+    } else {
+        std::istringstream text(std::string(bytes.begin(), bytes.end()));
+        std::string word;
+        if (!(text >> word) || word != "solid")
+            throw Error("cannot read '" + path + "' as STL: neither a binary STL (size does not match its triangle count)"
+                        " nor an ASCII one (no 'solid')");
+        while (text >> word) {
+            if (word != "vertex") continue;
+            float x, y, z;
+            if (!(text >> x >> y >> z)) throw Error("cannot read '" + path + "' as STL: a vertex line lacks coordinates");
+            corners.emplace_back(x, y, z);
+        }
+        if (corners.size() % 3 != 0)
+            throw Error("cannot read '" + path + "' as STL: " + std::to_string(corners.size()) +
+                        " vertices do not make whole triangles");
+    }
+    auto vi = vcg::tri::Allocator<CliMesh>::AddVertices(m, corners.size());
+    for (const auto& c : corners) (vi++)->P() = vcg::Point3d(c[0], c[1], c[2]);
+    auto fi = vcg::tri::Allocator<CliMesh>::AddFaces(m, corners.size() / 3);
+    for (size_t t = 0; t < corners.size() / 3; ++t, ++fi)
+        for (int k = 0; k < 3; ++k) fi->V(k) = &m.vert[3 * t + k];
+}
+
+} // namespace
+
 MeshFile::MeshFile(std::unique_ptr<Data> data) : data_(std::move(data)) {}
 MeshFile::MeshFile(MeshFile&&) noexcept = default;
 MeshFile& MeshFile::operator=(MeshFile&&) noexcept = default;
@@ -201,7 +255,13 @@ MeshFile MeshFile::read(const std::string& path) {
     CliMesh& m = d->mesh;
     const bool shifted_obj = d->format == MeshFormat::Obj && obj_importer_drops_first_vertex();
     const std::string source = shifted_obj ? obj_copy_with_leading_vertex(path) : path;
-    const int err = Importer::Open(m, source.c_str(), d->load_mask);
+    int err = 0;
+    if (d->format == MeshFormat::Stl) {
+        read_stl(m, path);
+        d->load_mask = 0;
+    } else {
+        err = Importer::Open(m, source.c_str(), d->load_mask);
+    }
     if (source != path) std::remove(source.c_str());
     if (err != 0 && Importer::ErrorCritical(err))
         throw Error("cannot read '" + path + "' as " + format_name(d->format) + ": " + Importer::ErrorMsg(err));

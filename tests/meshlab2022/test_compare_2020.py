@@ -50,7 +50,10 @@ class Compare2020(unittest.TestCase):
         if "select_above" in case:
             c = repr(float(case["select_above"]))
             steps.append(h.select_faces(f"(z0 > {c}) && (z1 > {c}) && (z2 > {c})"))
-        steps.append(h.geofilter(case["filter"], **case["params"]))
+        # Built from the case (the filter table as the 2022 plugin saw it), not from the
+        # harness's own parameter lists, so that both runs state exactly the same values.
+        params = [(h.Param(p["name"], p["type"], p["value"], p["choices"]), p["value"]) for p in case["params"]]
+        steps.append(h.Step(case["filter"], params))
         out = os.path.join(d, "out2020.ply")
         layer = "x" if case["measure"] else None   # the measure's product is its new (last) layer
         run = h.run_meshlabserver(d, steps, inputs=[case["input"]], outputs=[(out, layer)])

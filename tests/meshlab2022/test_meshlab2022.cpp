@@ -113,7 +113,7 @@ Found byPythonName(const QString &python)
 	return byName(Host::functions->filterFunction(python).meshlabFunctionName());
 }
 
-struct Run
+struct FilterRun
 {
 	std::map<std::string, QVariant> outputs;
 	unsigned int postConditionMask = MeshModel::MM_UNKNOWN;
@@ -134,7 +134,7 @@ using Values = std::map<std::string, QVariant>;
 // What pymeshlab's applyFilter/applyFilterRPL do, minus Python: defaults from
 // initParameterList, given values set by type, requirements, the document state, the call,
 // and compaction of every mesh afterwards.
-Run apply(MeshDocument &md, const Found &f, const Values &values)
+FilterRun apply(MeshDocument &md, const Found &f, const Values &values = {})
 {
 	if (!f.plugin || !f.action) throw std::runtime_error("filter not found");
 	RichParameterList rpl = f.plugin->initParameterList(f.action, md);
@@ -147,7 +147,7 @@ Run apply(MeshDocument &md, const Found &f, const Values &values)
 		else if (p.value().isFloat()) p.setValue(FloatValue(Scalarm(v.toDouble())));
 		else throw std::runtime_error("unsupported parameter type for " + name);
 	}
-	Run run;
+	FilterRun run;
 	if (md.mm() != nullptr) {
 		QStringList missing;
 		if (!f.plugin->isFilterApplicable(f.action, *md.mm(), missing))
@@ -171,7 +171,7 @@ Run apply(MeshDocument &md, const Found &f, const Values &values)
 	return run;
 }
 
-Run apply(MeshDocument &md, const std::string &name, const Values &values = {})
+FilterRun apply(MeshDocument &md, const std::string &name, const Values &values = {})
 {
 	return apply(md, byName(qs(name)), values);
 }
@@ -227,14 +227,16 @@ std::vector<char> meshBytes(const CMeshO &cm)
 	put(&cm.fn, sizeof cm.fn);
 	put(&cm.bbox, sizeof cm.bbox);
 	for (const auto &v : cm.vert) {
-		put(&v.cP(), sizeof(Point3m));
-		put(&v.cN(), sizeof(Point3m));
+		const Point3m p = v.cP(), n = v.cN();
 		const int flags = v.cFlags();
+		put(&p, sizeof p);
+		put(&n, sizeof n);
 		put(&flags, sizeof flags);
 	}
 	for (const auto &f : cm.face) {
-		put(&f.cN(), sizeof(Point3m));
+		const Point3m n = f.cN();
 		const int flags = f.cFlags();
+		put(&n, sizeof n);
 		put(&flags, sizeof flags);
 	}
 	return b;
@@ -318,7 +320,9 @@ TEST(Parameters, MatchTheTableAndUseSelectionFollowsTheSelection)
 	MeshDocument md;
 	MeshModel &m = createSphere(md, 1.0, 3);
 	for (int selected = 0; selected < 2; ++selected) {
-		if (selected) ASSERT_GT(selectCap(m.cm, 0.5), 0);
+		if (selected) {
+			ASSERT_GT(selectCap(m.cm, 0.5), 0);
+		}
 		for (const FilterSpec &s : geofilter::filter_table()) {
 			SCOPED_TRACE(s.name + (selected ? " (selection)" : " (no selection)"));
 			const Found f = byName(qs(s.name));
@@ -330,7 +334,9 @@ TEST(Parameters, MatchTheTableAndUseSelectionFollowsTheSelection)
 				switch (p.type) {
 				case geofilter::ParameterType::Float:
 					ASSERT_TRUE(v.isFloat()) << p.name;
-					EXPECT_EQ(v.getFloat(), Scalarm(p.default_value)) << p.name;
+					// FloatValue's constructor takes a float, even in a double-precision MeshLab
+					// (2022.02 to 2025.07): every RichFloat passes through single precision.
+					EXPECT_EQ(v.getFloat(), Scalarm(float(p.default_value))) << p.name;
 					break;
 				case geofilter::ParameterType::Bool:
 					ASSERT_TRUE(v.isBool()) << p.name;
@@ -359,7 +365,7 @@ TEST(Sphere, Fig6RadiusRatiosFollowEq15)
 		SCOPED_TRACE("r = " + std::to_string(r));
 		MeshDocument md;
 		MeshModel &m = createSphere(md, r, level);
-		const Run run = apply(md, byPythonName("apply_geofilter_custom"), kFig6);
+		const FilterRun run = apply(md, byPythonName("apply_geofilter_custom"), kFig6);
 		const double ratio = meanRadius(m.cm) / r;
 		const double expected = std::abs(eq15(2 / (r * r), 10, 25, 1, 30, 0));
 		EXPECT_NEAR(ratio / expected, 1.0, 0.02) << "ratio " << ratio << ", G(2/r^2) = " << expected;
@@ -372,7 +378,7 @@ TEST(Sphere, PaperSolverAgrees)
 	MeshModel &m = createSphere(md, 0.45, 3);
 	Values v = kFig6;
 	v["solver"] = 1;
-	const Run run = apply(md, "GeoFilter: Custom", v);
+	const FilterRun run = apply(md, "GeoFilter: Custom", v);
 	bool mentioned = false;
 	for (const auto &l : run.log) mentioned = mentioned || l.find("solver Jacobi-PCG") != std::string::npos;
 	EXPECT_TRUE(mentioned);
@@ -383,7 +389,7 @@ TEST(Running, LogsProgressesAndReportsWhatChanged)
 {
 	MeshDocument md;
 	MeshModel &m = createSphere(md, 1.0, 3);
-	const Run run = apply(md, byPythonName("apply_geofilter_lowpass"), {{"useSelection", false}});
+	const FilterRun run = apply(md, byPythonName("apply_geofilter_lowpass"), {{"useSelection", false}});
 	EXPECT_EQ(run.postConditionMask, unsigned(MeshModel::MM_VERTCOORD | MeshModel::MM_VERTNORMAL | MeshModel::MM_FACENORMAL));
 	EXPECT_TRUE(run.outputs.empty());
 	bool peak = false, solver = false;
@@ -475,7 +481,7 @@ TEST(Measure, ReturnsTheEllipsoidAndAddsALayer)
 	MeshModel &m = createSphere(md, 1.0, 3);
 	ASSERT_GT(selectCap(m.cm, 0.5), 0);
 	const std::vector<char> before = meshBytes(m.cm);
-	const Run run = apply(md, byPythonName("compute_geofilter_feature_measure"));
+	const FilterRun run = apply(md, byPythonName("compute_geofilter_feature_measure"));
 	EXPECT_TRUE(meshBytes(m.cm) == before) << "measuring changed the measured mesh";
 	EXPECT_EQ(run.postConditionMask, unsigned(MeshModel::MM_NONE));
 	ASSERT_EQ(md.meshNumber(), 2u);
@@ -562,14 +568,20 @@ TEST(Comparison, WriteCasesFor2020)
 	ASSERT_TRUE(QDir().mkpath(dir));
 
 	// Inputs are written once with io_base and read back, so that this run and the 2020.09
-	// run start from the same file.
+	// run start from the same file. Coordinates are rounded to float first: a double-precision
+	// MeshLab then sees exactly what the single-precision 2020.09 reads.
+	auto toFloat = [](MeshModel &m) -> MeshModel & {
+		for (auto &v : m.cm.vert)
+			for (int k = 0; k < 3; ++k) v.P()[k] = Scalarm(float(v.P()[k]));
+		m.updateBoxAndNormals();
+		return m;
+	};
 	{
 		MeshDocument md;
-		MeshModel &sphere = createSphere(md, 1.0, 3);
-		meshlab::saveMeshWithStandardParameters(dir + "/input-sphere.ply", sphere);
+		meshlab::saveMeshWithStandardParameters(dir + "/input-sphere.ply", toFloat(createSphere(md, 1.0, 3)));
 		geofilter::Mesh bumpy = geofilter::icosphere(4, 1.0);
 		geofilter::perturb_radially(bumpy, 0.02, 11);
-		meshlab::saveMeshWithStandardParameters(dir + "/input-bumpy.ply", addMesh(md, bumpy, "bumpy"));
+		meshlab::saveMeshWithStandardParameters(dir + "/input-bumpy.ply", toFloat(addMesh(md, bumpy, "bumpy")));
 	}
 
 	QJsonArray out;
@@ -580,7 +592,9 @@ TEST(Comparison, WriteCasesFor2020)
 		const std::list<MeshModel *> loaded = meshlab::loadMeshWithStandardParameters(input, md);
 		ASSERT_EQ(loaded.size(), 1u);
 		MeshModel &m = *md.mm();
-		if (!std::isnan(c.selectAbove)) ASSERT_GT(selectCap(m.cm, c.selectAbove), 0);
+		if (!std::isnan(c.selectAbove)) {
+			ASSERT_GT(selectCap(m.cm, c.selectAbove), 0);
+		}
 
 		Values values;   // every parameter, so that the 2020.09 script states the same ones
 		for (const auto &p : tableEntry(c.filter).parameters) values[p.name] = p.default_value;
@@ -589,14 +603,22 @@ TEST(Comparison, WriteCasesFor2020)
 			if (p.type == geofilter::ParameterType::Bool) values[p.name] = values[p.name].toDouble() != 0;
 			else if (p.type != geofilter::ParameterType::Float) values[p.name] = int(values[p.name].toDouble());
 
-		const Run run = apply(md, c.filter, values);
+		const FilterRun run = apply(md, c.filter, values);
 		const QString output = dir + "/out2022-" + qs(c.tag) + ".ply";
 		const bool measure = tableEntry(c.filter).kind == geofilter::FilterKind::Measure;
 		// The measure's product is its new layer; filters change the current mesh.
 		meshlab::saveMeshWithStandardParameters(output, measure ? *md.getMesh(1) : m);
 
-		QJsonObject params, results;
-		for (const auto &[k, v] : values) params[qs(k)] = json(v);
+		// In the table's order, with MeshLab's type names: what a 2020.09 script must state.
+		QJsonArray params;
+		for (const auto &p : tableEntry(c.filter).parameters) {
+			static const char *const rich[] = {"RichFloat", "RichBool", "RichInt", "RichEnum"};
+			params.append(QJsonObject{{"name", qs(p.name)},
+			                          {"type", rich[int(p.type)]},
+			                          {"value", json(values.at(p.name))},
+			                          {"choices", int(p.choices.size())}});
+		}
+		QJsonObject results;
 		for (const auto &[k, v] : run.outputs) {
 			if (v.canConvert<Point3m>()) {
 				const Point3m p = v.value<Point3m>();

@@ -1,0 +1,100 @@
+#!/usr/bin/env bash
+# Screenshots of the GeoFilter plugin in the MeshLab 2020.09 and 2022.02 GUIs, under Xvfb:
+#   docs/screenshots/meshlab-<version>-menu.png       Filters > Smoothing, Fairing and Deformation
+#   docs/screenshots/meshlab-<version>-geofilter.png  the GeoFilter: Lowpass dialog on the bunny
+#
+# Needs: xvfb, xdotool, imagemagick (import); the default build (build/meshlab-prefix, from
+# scripts/build.sh) and build-2022/ (from scripts/test-meshlab2022.sh); meshes/bunny00.off
+# (scripts/fetch-meshes.sh).
+set -euo pipefail
+top=$(cd "$(dirname "$0")/.." && pwd)
+out=$top/docs/screenshots
+mesh=${GEOFILTER_SCREENSHOT_MESH:-$top/meshes/bunny00.off}
+ml2020=${GEOFILTER_BUILD_DIR:-$top/build}/meshlab-prefix/bin/meshlab
+cache2022=$top/build-2022/CMakeCache.txt
+
+for tool in Xvfb xdotool import; do
+    command -v "$tool" >/dev/null || { echo "screenshots: $tool missing (apt-get install xvfb xdotool imagemagick)" >&2; exit 1; }
+done
+[ -f "$mesh" ] || "$top/scripts/fetch-meshes.sh"
+[ -x "$ml2020" ] || { echo "screenshots: $ml2020 missing: run scripts/build.sh" >&2; exit 1; }
+[ -f "$cache2022" ] || { echo "screenshots: build-2022/ missing: run scripts/test-meshlab2022.sh" >&2; exit 1; }
+cached() { sed -n "s/^$1:[A-Z]*=//p" "$cache2022"; }
+distrib2022=$(cached MESHLAB_2022_DISTRIB_DIR)
+plugin2022=$(cached GEOFILTER_MESHLAB2022_PLUGIN_DIR)/libfilter_geofilter.so
+[ -x "$distrib2022/meshlab" ] && [ -f "$plugin2022" ] ||
+    { echo "screenshots: MeshLab 2022 GUI or plugin missing: run scripts/test-meshlab2022.sh" >&2; exit 1; }
+
+work=$(mktemp -d)
+pids=()
+cleanup() {
+    for p in "${pids[@]}"; do kill "$p" 2>/dev/null || true; done
+    rm -rf "$work"
+}
+trap cleanup EXIT
+
+# A private display: the first free number from 90 on.
+n=90
+while [ -e "/tmp/.X$n-lock" ] || [ -e "/tmp/.X11-unix/X$n" ]; do n=$((n + 1)); done
+Xvfb ":$n" -screen 0 1400x900x24 -nolisten tcp >"$work/xvfb.log" 2>&1 &
+pids+=($!)
+export DISPLAY=":$n"
+for _ in $(seq 50); do xdotool getdisplaygeometry >/dev/null 2>&1 && break; sleep 0.2; done
+
+# MeshLab 2022 finds plugins and shaders next to its executable: a private folder with a copy
+# of the build's GUI (its RUNPATH still finds libmeshlab-common.so), the build's plugins and
+# ours, so that nothing is added to the cached MeshLab build.
+p2022=$work/meshlab-2022
+mkdir -p "$p2022/plugins"
+cp "$distrib2022/meshlab" "$p2022/"
+ln -s "$distrib2022/shaders" "$p2022/shaders"
+for f in "$distrib2022"/plugins/*.so "$plugin2022"; do ln -s "$f" "$p2022/plugins/"; done
+
+wait_window() { # name regex -> window id
+    timeout 60 xdotool search --sync --onlyvisible --name "$1" | head -n1
+}
+
+shoot() { # version executable
+    local version=$1 exe=$2 home=$work/home-$1
+    mkdir -p "$home/run" && chmod 700 "$home/run"
+    # A fresh HOME: no saved window layout or recent files from earlier sessions.
+    HOME=$home XDG_RUNTIME_DIR=$home/run "$exe" "$mesh" >"$work/$version.log" 2>&1 &
+    local pid=$!
+    pids+=($pid)
+    local win
+    win=$(wait_window "^MeshLab $version") || { echo "screenshots: no MeshLab $version window" >&2; cat "$work/$version.log" >&2; exit 1; }
+    xdotool windowsize "$win" 1400 900
+    sleep 3   # the mesh loads after the window shows
+    xdotool windowfocus --sync "$win"
+
+    # Filters (Alt+L) > the 7th entry below "Show current filter script": the menu's order is
+    # fixed in MeshLab's mainwindow_Init.cpp, the same in both versions.
+    xdotool key alt+l
+    sleep 1
+    xdotool key Down Down Down Down Down Down Down Right
+    sleep 1
+    import -window root "$out/meshlab-$version-menu.png"
+    xdotool key Escape Escape Escape
+    sleep 0.5
+
+    # The dialog, opened by name through MeshLab's filter search (Ctrl+F): the submenu's
+    # entries are sorted with every other plugin's, so their positions vary between installs.
+    xdotool key ctrl+f
+    sleep 1
+    xdotool type --delay 40 "GeoFilter: Lowpass"
+    sleep 1
+    xdotool key Down Return
+    local dialog
+    dialog=$(wait_window "^GeoFilter: Lowpass$") || { echo "screenshots: the GeoFilter dialog did not open in $version" >&2; exit 1; }
+    # 2020.09 opens its filter dock over the menu bar: put both where the bunny stays visible.
+    xdotool windowmove "$dialog" 522 100
+    sleep 1
+    import -window root "$out/meshlab-$version-geofilter.png"
+    kill "$pid"
+    wait "$pid" 2>/dev/null || true
+    echo "screenshots: $out/meshlab-$version-menu.png, $out/meshlab-$version-geofilter.png"
+}
+
+mkdir -p "$out"
+shoot 2020.09 "$ml2020"
+shoot 2022.02 "$p2022/meshlab"
