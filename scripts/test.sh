@@ -3,7 +3,10 @@
 #   1. unit tests (GoogleTest, in random order), command-line tool tests, and the
 #      meshlabserver integration tests under Xvfb, on the normal build;
 #   2. the unit and command-line tests again on a build with AddressSanitizer and
-#      UndefinedBehaviorSanitizer.
+#      UndefinedBehaviorSanitizer;
+#   3. the MeshLab 2022.02 plugin: MeshLab 2022.02 built from Debian trixie's source package
+#      (cached in /var/cache/geofilter after the first run), the plugin built against it, and
+#      its PluginManager test, which also compares results with the 2020.09 plugin.
 set -euo pipefail
 top=$(cd "$(dirname "$0")/.." && pwd)
 build=${GEOFILTER_BUILD_DIR:-$top/build}
@@ -23,3 +26,6 @@ cmake -S "$top" -B "$asan" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGEOFILTER_SANITIZ
 cmake --build "$asan" -j"$(nproc)"
 (cd "$asan" && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
     ctest --output-on-failure --timeout 900 -L 'unit|cli')
+
+echo "== MeshLab 2022.02 (FilterPlugin API) plugin"
+"$top/scripts/test-meshlab2022.sh"

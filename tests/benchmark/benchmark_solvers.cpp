@@ -164,15 +164,18 @@ std::string fmt(double v, int precision = 2) {
 int main(int argc, char** argv) {
     std::string out_dir = "benchmark-results", meshes_dir = "meshes";
     double pcg_budget = 60;
+    double pcg_full_budget = 900;  // lowpass on meshes below 120k vertices: PCG to convergence
     bool quick = false;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         if (a == "--out" && i + 1 < argc) out_dir = argv[++i];
         else if (a == "--meshes" && i + 1 < argc) meshes_dir = argv[++i];
         else if (a == "--pcg-seconds" && i + 1 < argc) pcg_budget = std::stod(argv[++i]);
+        else if (a == "--pcg-full-seconds" && i + 1 < argc) pcg_full_budget = std::stod(argv[++i]);
         else if (a == "--quick") quick = true;
         else {
-            std::cerr << "usage: geofilter_benchmark [--out DIR] [--meshes DIR] [--pcg-seconds S] [--quick]\n";
+            std::cerr << "usage: geofilter_benchmark [--out DIR] [--meshes DIR] [--pcg-seconds S] [--pcg-full-seconds S]"
+                         " [--quick]\n";
             return 2;
         }
     }
@@ -188,6 +191,13 @@ int main(int argc, char** argv) {
     };
     makers.push_back(perturbed_icosphere(5));  // 10,242 vertices
     if (!quick) {
+        // ~100k: the size at which the issue asks for a 100x lead over the paper's PCG on the
+        // lowpass, so that PCG runs to convergence there (see --pcg-full-seconds).
+        makers.push_back([]() {
+            Mesh m = torus(316, 316, 1.0, 0.4);
+            perturb_radially(m, 0.0015, 29);
+            return NamedMesh{"perturbed torus 316x316", m};
+        });
         makers.push_back(perturbed_icosphere(7));  // 163,842
         makers.push_back([]() {
             Mesh m = torus(1000, 1000, 1.0, 0.4);
@@ -229,6 +239,8 @@ int main(int argc, char** argv) {
         const double taubin_s = in_child([&](CaseResult& r) { r.taubin_seconds = taubin(m, 50); }).taubin_seconds;
         for (const Preset& p : presets) {
             const TransferFunction g = design_second_order(p.spec);
+            const bool lowpass = std::string(p.name) == "lowpass";
+            const double budget = (lowpass && m.points.rows() < 120000) ? pcg_full_budget : pcg_budget;
             const CaseResult floor = in_child([&](CaseResult& r) { r.floor_seconds = floor_solve(m, 1.0 / p.spec.s1); });
             const CaseResult r = in_child([&](CaseResult& r) {
                 FilterReport report;
@@ -242,7 +254,7 @@ int main(int argc, char** argv) {
                 FilterOptions pcg;
                 pcg.solver = Solver::JacobiPcg;
                 const double start = now();
-                pcg.progress = [&](double, const std::string&) { return now() - start < pcg_budget; };
+                pcg.progress = [&](double, const std::string&) { return now() - start < budget; };
                 FilterReport pcg_report;
                 try {
                     const Points slow = apply_filter(m.points, m.triangles, g, pcg, &pcg_report);
@@ -258,7 +270,7 @@ int main(int argc, char** argv) {
             if (r.failure[0]) {
                 row << "failed: " << r.failure << " |||||||||||\n";
             } else {
-                const std::string pcg_time = r.pcg_capped ? "> " + fmt(pcg_budget, 0) : fmt(r.pcg_seconds, 1);
+                const std::string pcg_time = r.pcg_capped ? "> " + fmt(budget, 0) : fmt(r.pcg_seconds, 1);
                 const std::string ratio = (r.pcg_capped ? "> " : "") + fmt(r.pcg_seconds / r.total, 0);
                 row << fmt(r.assembly) << " | " << fmt(r.factor) << " | " << fmt(r.solve) << " (" << r.fast_iterations
                     << " it.) | " << fmt(r.total) << " | " << fmt(r.peak_mib, 0) << " | " << pcg_time << " | "
