@@ -7,12 +7,7 @@ namespace geofilter {
 
 namespace {
 
-std::string num(double v) {
-    std::ostringstream os;
-    os.precision(6);
-    os << v;
-    return os.str();
-}
+std::string num(double v) { return format_number(v); }
 
 double value_of(const FilterSpec& spec, const ParameterValues& values, const std::string& name) {
     auto it = values.find(name);

@@ -8,12 +8,7 @@ namespace geofilter::cli {
 
 namespace {
 
-std::string num(double v) {
-    std::ostringstream os;
-    os.precision(6);
-    os << v;
-    return os.str();
-}
+std::string num(double v) { return format_number(v); }
 
 template <class Inside>
 std::vector<int> faces_inside(const Points& points, const Triangles& triangles, Inside inside) {

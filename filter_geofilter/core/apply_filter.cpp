@@ -42,6 +42,16 @@ std::string gib(double bytes) {
 } // namespace
 
 namespace detail {
+Eigen::MatrixXd apply_polynomial(const SparseMatrix& kt, const std::vector<double>& c, const Eigen::MatrixXd& y) {
+    Eigen::MatrixXd acc = c.back() * y;
+    for (int k = static_cast<int>(c.size()) - 2; k >= 0; --k) {
+        Eigen::MatrixXd next = kt * acc;
+        next += c[k] * y;
+        acc.swap(next);
+    }
+    return acc;
+}
+
 void report_progress(const FilterOptions& options, double fraction, const std::string& stage) {
     if (options.progress && !options.progress(fraction, stage)) throw Error("cancelled by the user while " + stage);
 }

@@ -21,17 +21,6 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// Horner: c_n Kt^n y + ... + c_0 y.
-Eigen::MatrixXd apply_polynomial(const SparseMatrix& kt, const std::vector<double>& c, const Eigen::MatrixXd& y) {
-    Eigen::MatrixXd acc = c.back() * y;
-    for (int k = static_cast<int>(c.size()) - 2; k >= 0; --k) {
-        Eigen::MatrixXd next = kt * acc;
-        next += c[k] * y;
-        acc.swap(next);
-    }
-    return acc;
-}
-
 } // namespace
 
 // CHOLMOD's default tries METIS on large meshes: measured here on a 1M-vertex mesh, its

@@ -79,12 +79,7 @@ Eigen::MatrixXd solve_jacobi_pcg(const FilterProblem& problem, FilterReport& rep
         y = q;
         size_t next_pole = 0;
         for (size_t k = 0; k < std::max(g.numerator.size(), g.poles.size()); ++k) {
-            if (k < g.numerator.size()) {
-                const std::vector<double>& c = g.numerator[k];
-                Eigen::MatrixXd acc = c.back() * y;
-                for (int j = static_cast<int>(c.size()) - 2; j >= 0; --j) acc = (kt * acc + c[j] * y).eval();
-                y.swap(acc);
-            }
+            if (k < g.numerator.size()) y = apply_polynomial(kt, g.numerator[k], y);
             if (next_pole >= g.poles.size()) continue;
             const std::complex<double> r = g.poles[next_pole];
             Eigen::MatrixXd x = y;

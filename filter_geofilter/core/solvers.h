@@ -21,6 +21,9 @@ struct FilterProblem {
 Eigen::MatrixXd solve_factored(const FilterProblem& problem, FilterReport& report);
 Eigen::MatrixXd solve_jacobi_pcg(const FilterProblem& problem, FilterReport& report);
 
+// Horner: c_n Kt^n y + ... + c_0 y (c ascending).
+Eigen::MatrixXd apply_polynomial(const SparseMatrix& kt, const std::vector<double>& c, const Eigen::MatrixXd& y);
+
 // The fill-reducing ordering every CHOLMOD factorisation of the project uses.
 void use_amd_ordering(cholmod_common& common);
 

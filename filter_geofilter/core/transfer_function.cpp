@@ -13,12 +13,7 @@ void require_finite(double v, const char* name) {
     if (!std::isfinite(v)) throw Error(std::string(name) + " must be a finite number (got " + std::to_string(v) + ")");
 }
 
-std::string fmt(double v) {
-    std::ostringstream os;
-    os.precision(6);
-    os << v;
-    return os.str();
-}
+std::string fmt(double v) { return format_number(v); }
 
 double poly(const std::vector<double>& c, double s) {
     double r = 0;
@@ -27,6 +22,13 @@ double poly(const std::vector<double>& c, double s) {
 }
 
 } // namespace
+
+std::string format_number(double value) {
+    std::ostringstream os;
+    os.precision(6);
+    os << value;
+    return os.str();
+}
 
 std::vector<std::complex<double>> quadratic_roots(double c0, double c1, double c2) {
     if (c2 == 0) {

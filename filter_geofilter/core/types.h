@@ -23,4 +23,7 @@ public:
     using std::runtime_error::runtime_error;
 };
 
+// A number as messages and logs show it: 6 significant digits.
+std::string format_number(double value);
+
 } // namespace geofilter

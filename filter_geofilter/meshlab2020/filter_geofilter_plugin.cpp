@@ -85,10 +85,9 @@ bool FilterGeoFilterPlugin::applyFilter(QAction *a, MeshDocument &md, const Rich
 	MeshModel *m = md.mm();
 	if (m == nullptr) return fail("there is no current mesh: open or create a mesh first");
 	try {
-		bridge::CoreMesh mesh = bridge::copyMesh(m->cm);
-		const geofilter::ParameterValues values = bridge::readValues(s, par, !mesh.selectedFaces.empty());
-		const geofilter::RunOutput out = geofilter::run_filter(
-		    s, values, geofilter::RunInput{mesh.points, mesh.triangles, mesh.selectedFaces, bridge::progressFor(cb, s)});
+		const bridge::FilterRun run = bridge::runOnMesh(s, m->cm, par, cb);
+		const bridge::CoreMesh &mesh = run.mesh;
+		const geofilter::RunOutput &out = run.out;
 
 		if (s.kind == geofilter::FilterKind::Measure) {
 			if (out.ellipsoid_mesh) addEllipsoidLayer(md, *out.ellipsoid_mesh);

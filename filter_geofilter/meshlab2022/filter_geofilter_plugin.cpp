@@ -108,10 +108,9 @@ std::map<std::string, QVariant> FilterGeoFilterPlugin::applyFilter(const QAction
 	if (m == nullptr) throw MLException("GeoFilter: there is no current mesh: open or create a mesh first");
 	std::map<std::string, QVariant> result;
 	try {
-		bridge::CoreMesh mesh = bridge::copyMesh(m->cm);
-		const geofilter::ParameterValues values = bridge::readValues(s, par, !mesh.selectedFaces.empty());
-		const geofilter::RunOutput out = geofilter::run_filter(
-		    s, values, geofilter::RunInput{mesh.points, mesh.triangles, mesh.selectedFaces, bridge::progressFor(cb, s)});
+		const bridge::FilterRun run = bridge::runOnMesh(s, m->cm, par, cb);
+		const bridge::CoreMesh &mesh = run.mesh;
+		const geofilter::RunOutput &out = run.out;
 
 		if (s.kind == geofilter::FilterKind::Measure) {
 			if (out.ellipsoid_mesh) {

@@ -154,6 +154,24 @@ inline ProgressCallback progressFor(vcg::CallBackPos *cb, const FilterSpec &spec
 	};
 }
 
+// What both adapters do between reading a filter call and writing its result: copy the
+// current mesh, read the parameters, run the filter. Throws geofilter::Error.
+struct FilterRun
+{
+	CoreMesh mesh;
+	RunOutput out;
+};
+
+inline FilterRun runOnMesh(const FilterSpec &spec, CMeshO &cm, const RichParameterList &par, vcg::CallBackPos *cb)
+{
+	FilterRun run;
+	run.mesh = copyMesh(cm);
+	const ParameterValues values = readValues(spec, par, !run.mesh.selectedFaces.empty());
+	run.out = run_filter(spec, values,
+	                     RunInput{run.mesh.points, run.mesh.triangles, run.mesh.selectedFaces, progressFor(cb, spec)});
+	return run;
+}
+
 // Writes the filtered coordinates back. Everything is converted (and refused if it does not
 // fit the mesh's scalar type) before the first vertex moves, so a refusal leaves the mesh
 // bit-for-bit as it was.
