@@ -35,7 +35,9 @@ std::string describe_feature(const FeatureEllipsoid& e) {
     os.precision(5);
     os << e.face_count << " selected faces, area " << e.area << "; ellipsoid radii " << e.radii[0] << ", " << e.radii[1]
        << ", " << e.radii[2] << "; centre (" << e.center[0] << ", " << e.center[1] << ", " << e.center[2]
-       << "); feature radius r = " << e.radius << " (mean of the two most similar radii)";
+       << "); axes (" << e.axes(0, 0) << ", " << e.axes(1, 0) << ", " << e.axes(2, 0) << "), (" << e.axes(0, 1) << ", "
+       << e.axes(1, 1) << ", " << e.axes(2, 1) << "), (" << e.axes(0, 2) << ", " << e.axes(1, 2) << ", " << e.axes(2, 2)
+       << "); feature radius r = " << e.radius << " (the radii pairs blended by roundness)";
     return os.str();
 }
 
@@ -61,8 +63,9 @@ TransferFunction design_from_values(const FilterSpec& spec, const ParameterValue
                 throw Error("s1 must be > 0 (got " + num(s.s1) + "): with useSelection it sets the ratio s2/s1");
             const double measured = feature->frequency(shape);
             const double ratio = s.s2 / s.s1;
-            log.push_back("s1 = " + num(measured) + " from the selection (" + shape_name + "); s2 = " + num(measured * ratio) +
-                          " keeps s2/s1 = " + num(ratio) + " (given s1 = " + num(s.s1) + ", s2 = " + num(s.s2) + ")");
+            log.push_back("s1 = " + num(measured) + " from " + std::to_string(feature->face_count) + " selected faces (" +
+                          shape_name + "), instead of the typed " + num(s.s1) + "; s2 = " + num(measured * ratio) +
+                          " keeps the typed ratio s2/s1 = " + num(ratio) + " (turn useSelection off to use the typed values)");
             s.s1 = measured;
             s.s2 = measured * ratio;
         } else {
@@ -93,8 +96,9 @@ TransferFunction design_from_values(const FilterSpec& spec, const ParameterValue
             const double scale = measured / corners[corner];
             for (double& c : corners) c *= scale;
             log.push_back("corner " + std::string(corner < param::max_pole_zero ? "z" : "p") +
-                          std::to_string(corner % param::max_pole_zero + 1) + " = " + num(measured) + " from the selection (" +
-                          shape_name + "); all corners scaled by " + num(scale));
+                          std::to_string(corner % param::max_pole_zero + 1) + " = " + num(measured) + " from " +
+                          std::to_string(feature->face_count) + " selected faces (" + shape_name + "), instead of the typed " +
+                          num(corners[corner]) + "; all corners scaled by " + num(scale));
             if (s1_used) *s1_used = measured;
         }
         for (int i = 0; i < param::max_pole_zero; ++i) {
@@ -150,17 +154,13 @@ RunOutput run_filter(const FilterSpec& spec, const ParameterValues& values, cons
     for (const auto& w : out.report.warnings) out.log.push_back("warning: " + w);
     if (out.report.fixed_vertices > 0)
         out.log.push_back(std::to_string(out.report.fixed_vertices) + " boundary vertices kept in place (fixBoundary)");
-    std::ostringstream os;
-    os.precision(3);
-    os << "solver " << solver_name(out.report.solver) << ": " << out.report.active_vertices << " vertices, "
-       << out.report.iterations << " CG iterations, relative residual " << out.report.relative_residual;
-    if (out.report.stopped_at_accuracy > 0)
-        os << " (stopped once the estimated error was below " << out.report.stopped_at_accuracy
-           << " of the bounding-box diagonal)";
-    os << "; time "
-       << out.report.seconds_total << " s (assembly " << out.report.seconds_assembly << ", factorisation "
-       << out.report.seconds_factorization << ", solve " << out.report.seconds_solve << ")";
-    out.log.push_back(os.str());
+    const FilterReport& r = out.report;
+    out.log.push_back("solver " + std::string(solver_name(r.solver)) + ": " + std::to_string(r.active_vertices) + " vertices in " +
+                      std::to_string(r.components) + " component(s), " + std::to_string(r.iterations) +
+                      " CG iterations, accurate to " + num(options.tolerance) +
+                      " of the bounding-box diagonal (error bound), relative residual " + num(r.relative_residual) +
+                      "; time " + num(r.seconds_total) + " s (assembly " + num(r.seconds_assembly) + ", factorisation " +
+                      num(r.seconds_factorization) + ", solve " + num(r.seconds_solve) + ")");
     return out;
 }
 
