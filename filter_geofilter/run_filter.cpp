@@ -92,8 +92,8 @@ TransferFunction design_from_values(const FilterSpec& spec, const ParameterValue
             if (corners[corner] == 0)
                 throw Error("featureCorner names a corner frequency that is not in use (0): give it a value, its ratio to"
                             " the others is kept");
-            const double measured = feature->frequency(shape);
-            const double scale = measured / corners[corner];
+            const double measured = feature->frequency(shape), typed = corners[corner];
+            const double scale = measured / typed;
             for (double& c : corners) c *= scale;
             log.push_back("corner " + std::string(corner < param::max_pole_zero ? "z" : "p") +
                           std::to_string(corner % param::max_pole_zero + 1) + " = " + num(measured) + " from " +

@@ -23,9 +23,9 @@ double poly(const std::vector<double>& c, double s) {
 
 } // namespace
 
-std::string format_number(double value) {
+std::string format_number(double value, int significant_digits) {
     std::ostringstream os;
-    os.precision(6);
+    os.precision(significant_digits);
     os << value;
     return os.str();
 }
