@@ -43,6 +43,45 @@ std::string describe_feature(const FeatureEllipsoid& e) {
 
 } // namespace
 
+double apply_feature_radius(const FilterSpec& spec, ParameterValues& values, double radius, const std::string& source,
+                            std::vector<std::string>& log) {
+    if (!(radius > 0) || !std::isfinite(radius))
+        throw Error(source + " must be a finite radius > 0 (got " + num(radius) + ")");
+    const bool cylinder = value_of(spec, values, param::feature_shape) == 1;
+    const double frequency = (cylinder ? 1.0 : 2.0) / (radius * radius);
+    const std::string how = std::string(cylinder ? "cylinder-like, s = 1/r^2" : "sphere-like, s = 2/r^2") +
+                            " with r = " + num(radius);
+    if (spec.kind == FilterKind::SecondOrder) {
+        const double s1 = value_of(spec, values, param::s1), s2 = value_of(spec, values, param::s2);
+        if (!(s1 > 0) || !std::isfinite(s2 / s1))
+            throw Error("s1 must be > 0 (got " + num(s1) + "): with " + source + " it sets the ratio s2/s1");
+        values[param::s1] = frequency;
+        values[param::s2] = frequency * (s2 / s1);
+        log.push_back("s1 = " + num(frequency) + " from " + source + " (" + how + "); s2 = " + num(frequency * (s2 / s1)) +
+                      " keeps s2/s1 = " + num(s2 / s1) + " (given s1 = " + num(s1) + ", s2 = " + num(s2) + ")");
+        return frequency;
+    }
+    if (spec.kind == FilterKind::PoleZero) {
+        // featureCorner indexes z1..z4 then p1..p4, as run_filter reads it.
+        std::vector<std::string> corners;
+        for (const auto& prefix : {param::zero_prefix, param::pole_prefix})
+            for (int i = 1; i <= param::max_pole_zero; ++i) corners.push_back(prefix + std::to_string(i));
+        const auto corner = size_t(value_of(spec, values, param::feature_corner));
+        if (corner >= corners.size()) throw Error("featureCorner must be an index from 0 to " + std::to_string(corners.size() - 1));
+        const std::string& corner_name = corners[corner];
+        const double given = value_of(spec, values, corner_name);
+        if (!(given > 0))
+            throw Error("featureCorner " + corner_name + " is not in use (0): give it a value, its ratio to the other"
+                        " corners is kept");
+        const double scale = frequency / given;
+        for (const auto& name : corners) values[name] = value_of(spec, values, name) * scale;
+        log.push_back("corner " + corner_name + " = " + num(frequency) + " from " + source + " (" + how +
+                      "); all corners scaled by " + num(scale));
+        return frequency;
+    }
+    throw Error(source + " does not apply to " + spec.cli_name);
+}
+
 ParameterValues default_values(const FilterSpec& spec, bool has_selection) {
     ParameterValues v;
     for (const auto& p : spec.parameters) v[p.name] = p.default_value;

@@ -22,7 +22,8 @@ echo "== unit and command-line tests under AddressSanitizer + UndefinedBehaviorS
 asan="$build-asan"
 source_dir=$(sed -n 's/^MESHLAB_SOURCE_DIR:PATH=//p' "$build/CMakeCache.txt")
 cmake -S "$top" -B "$asan" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGEOFILTER_SANITIZE=ON \
-    -DMESHLAB_SOURCE_DIR="$source_dir" -DGEOFILTER_BUILD_PLUGIN=OFF -DGEOFILTER_BUILD_BENCHMARK=OFF >/dev/null
+    -DMESHLAB_SOURCE_DIR="$source_dir" -DGEOFILTER_BUILD_PLUGIN=OFF -DGEOFILTER_BUILD_BENCHMARK=OFF \
+    -DGEOFILTER_BUILD_PYTHON=OFF >/dev/null
 cmake --build "$asan" -j"$(nproc)"
 (cd "$asan" && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
     ctest --output-on-failure --timeout 900 -L 'unit|cli')

@@ -108,7 +108,7 @@ int run(const CliOptions& o) {
     ParameterValues values = o.values;
     Feature feature;
     if (o.radius) {
-        apply_feature_radius(spec, values, *o.radius, log);
+        apply_feature_radius(spec, values, *o.radius, "--radius", log);
         feature = {true, *o.radius};
     }
     if (!measure) {
