@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # The test command: installs what is needed, builds, and runs every test:
-#   1. unit tests (GoogleTest, in random order), command-line tool tests, and the
-#      meshlabserver integration tests under Xvfb, on the normal build;
+#   1. unit tests (GoogleTest, in random order), command-line tool tests, the Python
+#      module's tests (pytest) and the meshlabserver integration tests under Xvfb, on the
+#      normal build; then the Debian package (scripts/test-deb.sh: installs it, runs the
+#      system meshlabserver and geofilter, removes it);
 #   2. the unit and command-line tests again on a build with AddressSanitizer and
 #      UndefinedBehaviorSanitizer;
 #   3. the MeshLab 2022.02 plugin: MeshLab 2022.02 built from Debian trixie's source package
@@ -17,6 +19,9 @@ build=${GEOFILTER_BUILD_DIR:-$top/build}
 export GTEST_SHUFFLE=1
 echo "== tests (build: $build)"
 (cd "$build" && ctest --output-on-failure --timeout 900 "$@")
+
+echo "== the Debian package: installed, run through the system MeshLab and geofilter, removed"
+"$top/scripts/test-deb.sh"
 
 echo "== unit and command-line tests under AddressSanitizer + UndefinedBehaviorSanitizer"
 asan="$build-asan"
