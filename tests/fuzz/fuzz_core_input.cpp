@@ -94,7 +94,12 @@ void run_core_on_bytes(const uint8_t* data, size_t size) {
     // Bounded work per input.
     values[param::max_iterations] = std::min(values[param::max_iterations], 300.0);
 
-    const Points before = mesh.points;
+    // Copies taken before the call, compared bit for bit after it (memcmp, so that a NaN
+    // rewritten with another payload, or -0 for 0, counts as a change): the core must never
+    // write through its input, whatever it refuses or computes.
+    const Points points_before = mesh.points;
+    const Triangles triangles_before = mesh.triangles;
+    const std::vector<int> selected_before = selected;
     try {
         const RunOutput out = run_filter(spec, values, {mesh.points, mesh.triangles, selected, {}});
         if (spec.kind != FilterKind::Measure) {
@@ -104,8 +109,13 @@ void run_core_on_bytes(const uint8_t* data, size_t size) {
     } catch (const Error&) {
         // A refusal: fine, as long as it left the input alone (checked below).
     }
-    if (std::memcmp(before.data(), mesh.points.data(), sizeof(double) * size_t(before.size())) != 0)
-        fail("the input mesh was modified");
+    if (mesh.points.rows() != points_before.rows() ||
+        std::memcmp(points_before.data(), mesh.points.data(), sizeof(double) * size_t(points_before.size())) != 0)
+        fail("the input vertex coordinates were modified");
+    if (mesh.triangles.rows() != triangles_before.rows() ||
+        std::memcmp(triangles_before.data(), mesh.triangles.data(), sizeof(int) * size_t(triangles_before.size())) != 0)
+        fail("the input faces were modified");
+    if (selected != selected_before) fail("the input selection was modified");
 }
 
 } // namespace geofilter::fuzz
