@@ -20,8 +20,8 @@ const SecondOrderSpec paper_sets[] = {
 };
 
 std::string name_of(const SecondOrderSpec& s) {
-    return "s1=" + std::to_string(s.s1) + " s2=" + std::to_string(s.s2) + " G0=" + std::to_string(s.G0) +
-           " G1=" + std::to_string(s.G1) + " Ginf=" + std::to_string(s.Ginf);
+    return "s1=" + format_number(s.s1) + " s2=" + format_number(s.s2) + " G0=" + format_number(s.G0) +
+           " G1=" + format_number(s.G1) + " Ginf=" + format_number(s.Ginf);
 }
 
 } // namespace
