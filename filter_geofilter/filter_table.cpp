@@ -114,7 +114,7 @@ FilterSpec pole_zero() {
 
 std::vector<FilterSpec> make_table() {
     std::vector<FilterSpec> t;
-    // Defaults are the paper's figures where those are stable (PAPER-NOTES section 9); the
+    // Defaults are the paper's figures where those are stable (docs/paper-notes.md §9); the
     // highpass family's printed example is not, so its default is a stable member of it.
     t.push_back(second_order("Lowpass", "apply_geofilter_lowpass", "lowpass",
                              "Removes features smaller than the one at s1 and keeps larger ones (paper Fig. 12).",

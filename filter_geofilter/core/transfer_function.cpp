@@ -10,7 +10,7 @@ namespace geofilter {
 namespace {
 
 void require_finite(double v, const char* name) {
-    if (!std::isfinite(v)) throw Error(std::string(name) + " must be a finite number (got " + std::to_string(v) + ")");
+    if (!std::isfinite(v)) throw Error(std::string(name) + " must be a finite number (got " + format_number(v) + ")");
 }
 
 std::string fmt(double v) { return format_number(v); }

@@ -29,8 +29,8 @@ class SphereTest(unittest.TestCase):
             h.WRITERS[ext](path, v, f)
         return path
 
-    def test_eq15_as_written_in_this_test(self):
-        # The five conditions the five numbers stand for (PAPER-NOTES section 2).
+    def test_eq15_reference_meets_its_five_conditions(self):
+        # The five conditions the five numbers stand for (docs/paper-notes.md §2).
         g = lambda s: h.eq15_gain(s, **FIG6)
         self.assertAlmostEqual(g(0), FIG6["G0"], places=12)
         self.assertAlmostEqual(g(FIG6["s1"]), FIG6["G1"], places=9)
