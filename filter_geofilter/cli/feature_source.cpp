@@ -63,7 +63,13 @@ double apply_feature_radius(const FilterSpec& spec, ParameterValues& values, dou
                       "); all corners scaled by " + num(scale));
         return frequency;
     }
-    throw Error("--radius does not apply to " + spec.cli_name);
+    if (spec.kind == FilterKind::Butterworth) {
+        values[param::cutoff] = frequency;
+        log.push_back("cutoff sc = " + num(frequency) + " from --radius (" + how + ")");
+        return frequency;
+    }
+    throw Error("--radius does not apply to " + spec.cli_name +
+                (spec.kind == FilterKind::Denoise ? ": select one bump with --select-* instead" : ""));
 }
 
 std::vector<int> select_faces(const Points& points, const Triangles& triangles, const CliOptions& options,

@@ -93,7 +93,7 @@ Points apply_filter_unguarded(const Points& points, const Triangles& triangles, 
     report.active_vertices = static_cast<int>(mesh.active_vertex.size());
 
     detail::report_progress(options, 0.0, "assembling the Laplacian");
-    const Laplacian laplacian = cotan_laplacian(mesh.points, mesh.triangles);
+    const Laplacian laplacian = build_laplacian(options.op, mesh.points, mesh.triangles);
     // Centre on the area-weighted centroid: translation invariance, and no cancellation for
     // meshes far from the origin.
     const Eigen::RowVector3d centroid = (laplacian.mass.transpose() * mesh.points) / laplacian.mass.sum();

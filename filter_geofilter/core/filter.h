@@ -2,6 +2,7 @@
 // without eigenvectors.
 #pragma once
 
+#include "operators.h"
 #include "transfer_function.h"
 #include "types.h"
 
@@ -30,6 +31,7 @@ using ProgressCallback = std::function<bool(double fraction, const std::string& 
 
 struct FilterOptions {
     Solver solver = Solver::Factored;
+    Operator op = Operator::Cotangent;  // the Laplacian whose frequencies G is designed in
     double tolerance = 1e-10;      // relative residual of every iterative solve
     // The factored solver also stops once its estimated remaining error is below this
     // fraction of the bounding-box diagonal at every vertex (its CG converges at a rate
