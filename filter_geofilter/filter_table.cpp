@@ -135,7 +135,7 @@ FilterSpec butterworth_lowpass() {
                  " of almost exactly 1, smaller ones removed. With useSelection on, sc is the selected feature's"
                  " frequency (2/r^2 or 1/r^2).",
                  {}});
-    p.push_back({param::order, ParameterType::Int, 4, "order n (1-8)",
+    p.push_back({param::order, ParameterType::Int, 4, "order: steepness n (1-8)",
                  "Steepness: beyond the cutoff the gain falls by 20 n dB per decade; below it the gain stays within"
                  " (s/sc)^n of 1. Each order is one sparse solve (a pair of orders one conjugate-gradient solve).",
                  {}});
@@ -163,7 +163,7 @@ FilterSpec denoise() {
                  " larger features and the volume stay (cutoff radius twice the bump's). Off: remove per-vertex"
                  " sampling noise using only the mesh. Default: on when faces are selected.",
                  {}});
-    p.push_back({param::order, ParameterType::Int, 4, "order n (1-8)",
+    p.push_back({param::order, ParameterType::Int, 4, "order: steepness n (1-8)",
                  "Order of the Butterworth lowpass (steepness, 20 n dB/decade).", {}});
     p.push_back(operator_parameter("cotangent with a selection, umbrella (per-vertex) without."));
     append_shared(p);
