@@ -14,7 +14,8 @@ Rows: Denoise untuned; GeoFilter's best over a sweep; MeshLab Taubin, HC Laplaci
 (cotangent) and TwoStep at their default parameters and at their best over a sweep. Every "best"
 is chosen against the truth, which no user has (an oracle). Metrics: RMS vertex distance, mean
 point-to-surface distance, mean face-normal error, volume change, folded faces (normal more than
-90 degrees off the truth's), time (wall time of a meshlabserver run minus a load-and-save run).
+90 degrees off the truth's), time (wall time of one meshlabserver run minus one load-and-save run, on a shared machine:
+indicative only).
 
 Writes <out>/denoise.md and <out>/denoise.json. Usage:
     /usr/bin/python3 scripts/compare_denoise.py [--out results/denoise] [--only feature|noise]
@@ -217,27 +218,20 @@ def select_bump(centre, radius):
 
 
 def timed(d, steps, inp, name, base):
-    best = None
-    for _ in range(2):
-        _, wall = c.run(d, steps, inputs=[inp], outputs=[(os.path.join(d, name + "-t.ply"), None)], name=name)
-        best = wall if best is None else min(best, wall)
-    return max(best - base, 0.0)
+    _, wall = c.run(d, steps, inputs=[inp], outputs=[(os.path.join(d, name + "-t.ply"), None)], name=name)
+    return max(wall - base, 0.0)
 
 
 def run_case(d, inp, f, truth, gf_sweep, denoise_steps):
     """gf_sweep: [(label, step)] on copies of layer 0; denoise_steps: the untuned run's script."""
     m = lambda v: measures(v, f, truth)
     rows = {"input": dict(m(h.read_ply(inp).vertices), setting="", time=None, file=inp)}
-    base = None
-    for _ in range(2):
-        _, wall = c.run(d, [c.select_none()], inputs=[inp], outputs=[(os.path.join(d, "base.ply"), None)], name="base")
-        base = wall if base is None else min(base, wall)
+    _, base = c.run(d, [c.select_none()], inputs=[inp], outputs=[(os.path.join(d, "base.ply"), None)], name="base")
 
     out = os.path.join(d, "denoise.ply")
-    r, _ = c.run(d, denoise_steps, inputs=[inp], outputs=[(out, None)], name="denoise")
+    r, wall = c.run(d, denoise_steps, inputs=[inp], outputs=[(out, None)], name="denoise")
     log = [line for line in r.log if "cutoff sc" in line or "design:" in line]
-    rows["denoise"] = dict(m(h.read_ply(out).vertices), setting="; ".join(log[-2:]), file=out,
-                           time=timed(d, denoise_steps, inp, "t-denoise", base))
+    rows["denoise"] = dict(m(h.read_ply(out).vertices), setting="; ".join(log[-2:]), file=out, time=wall - base)
 
     steps, outs = [], []
     for i, (label, step) in enumerate(gf_sweep):
@@ -274,6 +268,18 @@ ROWS = ([("input", "input"), ("denoise", "**GeoFilter Denoise, untuned**"), ("gf
         [(k + "_default", LABEL[k] + ", default") for k in SWEEP] + [(k + "_best", LABEL[k] + ", best (oracle)") for k in SWEEP])
 
 
+def short_setting(key, r):
+    """The Denoise row's setting is its log lines: keep the cutoff, its origin and the operator."""
+    if key != "denoise":
+        return r["setting"]
+    import re
+    text = r["setting"]
+    sc = re.search(r"cutoff sc = ([0-9.eE+-]+)", text)
+    op = re.search(r"operator ([a-zA-Z ]+?)(?: \(|;|$)", text)
+    origin = "selected bump, cutoff radius 2 r" if "selected bump" in text else "nothing selected"
+    return f"{origin}; n = 4, sc = {sc.group(1) if sc else '?'}, {op.group(1) if op else '?'}"
+
+
 def table(case):
     L = ["| method | setting | RMS vertex (1e-3) | mean to surface (1e-3) | normal error (°) | volume | folded | time (s) |",
          "|---|---|---:|---:|---:|---:|---:|---:|"]
@@ -281,7 +287,7 @@ def table(case):
         r = case["rows"][key]
         vol = "–" if r["dvol"] is None else f"{r['dvol']:+.3f} %"
         t = "–" if r.get("time") is None else f"{r['time']:.2f}"
-        L.append(f"| {label} | {r['setting']} | {1e3 * r['rms']:.3f} | {1e3 * r['surf']:.3f} | {r['nerr']:.2f} | {vol} | "
+        L.append(f"| {label} | {short_setting(key, r)} | {1e3 * r['rms']:.3f} | {1e3 * r['surf']:.3f} | {r['nerr']:.2f} | {vol} | "
                  f"{r['folded']} | {t} |")
     return "\n".join(L)
 
@@ -308,14 +314,70 @@ UMBRELLA_CUTOFFS = [0.15, 0.25, 0.35, 0.5, 0.7, 1.0]
 COT_K = [0.75, 1.0, 1.5, 2.0]  # cutoff radius in mean edge lengths
 
 
+def summary(results):
+    """One line per case: Denoise against the smoothers' defaults and their best (RMS / normal error)."""
+    cell = lambda r: f"{1e3 * r['rms']:.3f} / {r['nerr']:.1f}°"
+    L = ["## Summary (RMS vertex distance in 1e-3 of the diagonal / mean normal error)\n",
+         "| case | input | **Denoise** (volume, folded) | Taubin default | HC default | Laplacian default | TwoStep default |"
+         " best MeshLab smoother (oracle) | GeoFilter best (oracle) |",
+         "|---|---:|---:|---:|---:|---:|---:|---:|---:|"]
+    for kind in ("feature", "noise"):
+        for case in results[kind]:
+            r = case["rows"]
+            best_key = min((k + "_best" for k in SWEEP), key=lambda k: r[k]["rms"])
+            dn = r["denoise"]
+            vol = "–" if dn["dvol"] is None else f"{dn['dvol']:+.2f} %"
+            L.append(f"| {case['name']} | {cell(r['input'])} | **{cell(dn)}** ({vol}, {dn['folded']} vs {r['input']['folded']})"
+                     f" | {cell(r['taubin_default'])} | {cell(r['hc_default'])} | {cell(r['laplacian_default'])} |"
+                     f" {cell(r['twostep_default'])} | {cell(r[best_key])} {LABEL[best_key[:-5]]} | {cell(r['gf_best'])} |")
+    return L + [""]
+
+
+def render(paths, out_dir):
+    md = ["# GeoFilter Denoise against MeshLab's smoothers\n",
+          "Generated by `/usr/bin/python3 scripts/compare_denoise.py`. Rows marked *best (oracle)* are the best of a"
+          " sweep scored against the truth, which a user does not have.\n"]
+    merged = {"feature": [], "noise": []}
+    for p in paths:
+        with open(p) as f:
+            r = json.load(f)
+        for k in merged:
+            merged[k] += r[k]
+    md += summary(merged)
+    for k, title in (("feature", "Feature-scale: remove a pattern of small bumps, keep the large ones"),
+                     ("noise", "Sampling noise: per-vertex Gaussian noise, nothing selected")):
+        if merged[k]:
+            md.append(f"## {title}\n")
+        for case in merged[k]:
+            md += [f"### {case['name']}\n", table(case), "", f"Floors: {case['floors']}\n"]
+    with open(os.path.join(out_dir, "denoise.md"), "w") as out:
+        out.write("\n".join(md))
+    with open(os.path.join(out_dir, "denoise.json"), "w") as out:
+        json.dump(merged, out, indent=1, default=str)
+
+
+def save(out_dir, md, results, t0, final=False):
+    """Written after every case, so an interrupted run keeps what it measured."""
+    total = time.perf_counter() - t0
+    tail = [f"Total run {total:.0f} s." + ("" if final else " (partial: the run was still going)") + "\n"]
+    with open(os.path.join(out_dir, "denoise.md"), "w") as out:
+        out.write("\n".join(md + tail))
+    with open(os.path.join(out_dir, "denoise.json"), "w") as out:
+        json.dump(results, out, indent=1, default=str)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--out", default=os.path.join(c.TOP, "results", "denoise"))
     ap.add_argument("--only", choices=["feature", "noise"])
     ap.add_argument("--meshes", default=",".join(NOISE_MESHES))
     ap.add_argument("--workdir")
+    ap.add_argument("--render", nargs="+", metavar="JSON", help="only rewrite <out>/denoise.md from earlier runs' JSON")
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)
+    if args.render:
+        render(args.render, args.out)
+        return
     work = args.workdir or tempfile.mkdtemp(prefix="compare-denoise-")
     t0 = time.perf_counter()
     results = {"feature": [], "noise": []}
@@ -340,10 +402,12 @@ def main():
             results["feature"].append({"name": name, "rows": rows, "sweeps": sweeps, "floors": fl})
             md += [f"### {name}\n", table(results["feature"][-1]), "", f"Floors: {fl}\n"]
             print("  RMS 1e-3: " + ", ".join(f"{k} {1e3 * rows[k]['rms']:.3f}" for k, _ in ROWS), flush=True)
+            save(args.out, md, results, t0)
 
     if args.only != "feature":
         md.append("## Sampling noise: per-vertex Gaussian noise, nothing selected\n")
-        noise_cases = [(m, k, "normal") for m in args.meshes.split(",") for k in NOISE_K] + [("bunny00", 0.3, "random")]
+        # Level by level, so that a partial run covers every mesh at the middle level first.
+        noise_cases = [(m, k, "normal") for k in (0.3, 0.5, 0.1) for m in args.meshes.split(",")] + [("bunny00", 0.3, "random")]
         for mesh, k, direction in noise_cases:
             if mesh not in args.meshes.split(","):
                 continue
@@ -372,14 +436,10 @@ def main():
             results["noise"].append({"name": name, "rows": rows, "sweeps": sweeps, "floors": fl})
             md += [f"### {name}\n", table(results["noise"][-1]), "", f"Floors: {fl}\n"]
             print("  RMS 1e-3: " + ", ".join(f"{k} {1e3 * rows[k]['rms']:.3f}" for k, _ in ROWS), flush=True)
+            save(args.out, md, results, t0)
 
-    total = time.perf_counter() - t0
-    md.append(f"Total run {total:.0f} s.\n")
-    with open(os.path.join(args.out, "denoise.md"), "w") as out:
-        out.write("\n".join(md))
-    with open(os.path.join(args.out, "denoise.json"), "w") as out:
-        json.dump(results, out, indent=1, default=str)
-    print(f"wrote {args.out}/denoise.md, denoise.json; {total:.0f} s")
+    save(args.out, md, results, t0, final=True)
+    print(f"wrote {args.out}/denoise.md, denoise.json; {time.perf_counter() - t0:.0f} s")
     if not args.workdir:
         shutil.rmtree(work)
 
