@@ -112,6 +112,75 @@ FilterSpec pole_zero() {
             p};
 }
 
+// The operator choice every Butterworth-based entry shares; index 0 lets the filter pick.
+ParameterSpec operator_parameter(const std::string& automatic) {
+    return {param::laplace_operator, ParameterType::Enum, 0, "operator: Laplacian",
+            "The discrete Laplacian whose frequencies the filter cuts. Cotangent: the paper's (frequencies in"
+            " 1/length^2). Intrinsic Delaunay: cotangent weights after intrinsic edge flips, never negative, so noisy"
+            " or irregular triangles cannot make the filter fold faces (same units). Umbrella: Taubin's graph"
+            " Laplacian normalised by the degree, frequencies per vertex in [0, 2], blind to edge lengths. Automatic: " +
+                automatic,
+            {"Automatic", "Cotangent", "Intrinsic Delaunay", "Umbrella (per-vertex)"}};
+}
+
+// solver, tolerance, maxIterations, featureShape and fixBoundary, as the second-order entries have them.
+void append_shared(std::vector<ParameterSpec>& p) {
+    for (const auto& shared : second_order_parameters({}))
+        if (shared.name == param::feature_shape || shared.name == param::fix_boundary || shared.name == param::solver ||
+            shared.name == param::tolerance || shared.name == param::max_iterations)
+            p.push_back(shared);
+}
+
+FilterSpec butterworth_lowpass() {
+    std::vector<ParameterSpec> p;
+    p.push_back({param::cutoff, ParameterType::Float, 25, "cutoff: frequency sc",
+                 "Frequency where the gain is 1/2: features of radius r > sqrt(2/sc) (sphere-like) are kept with a gain"
+                 " of almost exactly 1, smaller ones removed. With useSelection on, sc is the selected feature's"
+                 " frequency (2/r^2 or 1/r^2).",
+                 {}});
+    p.push_back({param::order, ParameterType::Int, 4, "order: steepness n (1-8)",
+                 "Steepness: beyond the cutoff the gain falls by 20 n dB per decade; below it the gain stays within"
+                 " (s/sc)^n of 1. Each order is one sparse solve (a pair of orders one conjugate-gradient solve).",
+                 {}});
+    p.push_back({param::use_selection, ParameterType::Bool, 1, "useSelection: cutoff from the selected feature",
+                 "Set sc to the selected feature's frequency (2/r^2 sphere-like, 1/r^2 cylinder-like): features of that"
+                 " size are halved, smaller ones removed. Default: on when faces are selected.",
+                 {}});
+    p.push_back(operator_parameter("cotangent."));
+    append_shared(p);
+    return {"GeoFilter: Butterworth Lowpass",
+            "apply_geofilter_butterworth_lowpass",
+            "butterworth",
+            FilterKind::Butterworth,
+            "Maximally flat lowpass of order n: G(s) = 1/(1 + (s/sc)^n). The gain stays at 1 (no bump, so no volume"
+            " change) up to the cutoff and falls by 20 n dB/decade beyond it, applied as a cascade of first- and"
+            " second-order GeoFilter sections (the paper's note on higher orders)." +
+                std::string(frequency_note),
+            p};
+}
+
+FilterSpec denoise() {
+    std::vector<ParameterSpec> p;
+    p.push_back({param::use_selection, ParameterType::Bool, 1, "useSelection: remove bumps like the selected one",
+                 "On: the selected faces are one bump of the pattern to remove; bumps of that size and smaller go,"
+                 " larger features and the volume stay (cutoff radius twice the bump's). Off: remove per-vertex"
+                 " sampling noise using only the mesh. Default: on when faces are selected.",
+                 {}});
+    p.push_back({param::order, ParameterType::Int, 4, "order: steepness n (1-8)",
+                 "Order of the Butterworth lowpass (steepness, 20 n dB/decade).", {}});
+    p.push_back(operator_parameter("cotangent with a selection, umbrella (per-vertex) without."));
+    append_shared(p);
+    return {"GeoFilter: Denoise",
+            "apply_geofilter_denoise",
+            "denoise",
+            FilterKind::Denoise,
+            "Removes noise without tuning. With a selection: select one bump of a pattern (bumps, ripples, a"
+            " texture) and every feature of that size and smaller is removed by a 4th-order Butterworth lowpass cut"
+            " at twice the bump's radius; larger features and the volume stay. Without: per-vertex sampling noise"
+            " is removed by the same lowpass on Taubin's umbrella operator, cut at a fixed per-vertex frequency.",
+            p};
+}
+
 std::vector<FilterSpec> make_table() {
     std::vector<FilterSpec> t;
     // Defaults are the paper's figures where those are stable (docs/paper-notes.md §9); the
@@ -143,6 +212,8 @@ std::vector<FilterSpec> make_table() {
                  " sphere-like, 1/r^2 if cylinder-like, r blending the means of the adjacent pairs of radii by how round each"
                  " pair is.",
                  {}});
+    t.push_back(butterworth_lowpass());
+    t.push_back(denoise());
     return t;
 }
 

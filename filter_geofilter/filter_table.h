@@ -10,7 +10,7 @@
 
 namespace geofilter {
 
-enum class FilterKind { SecondOrder, PoleZero, Measure };
+enum class FilterKind { SecondOrder, PoleZero, Measure, Butterworth, Denoise };
 
 enum class ParameterType { Float, Bool, Int, Enum };
 
@@ -45,6 +45,7 @@ inline const std::string feature_corner = "featureCorner";
 inline const std::string fix_boundary = "fixBoundary";
 inline const std::string solver = "solver", tolerance = "tolerance", max_iterations = "maxIterations";
 inline const std::string zero_prefix = "z", pole_prefix = "p";  // z1..z4, p1..p4
+inline const std::string cutoff = "cutoff", order = "order", laplace_operator = "operator";
 constexpr int max_pole_zero = 4;
 } // namespace param
 

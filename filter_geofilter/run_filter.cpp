@@ -1,5 +1,7 @@
 #include "run_filter.h"
 
+#include "core/denoise.h"
+
 #include <cmath>
 #include <sstream>
 
@@ -41,6 +43,20 @@ std::string describe_feature(const FeatureEllipsoid& e) {
     return os.str();
 }
 
+int order_of(const FilterSpec& spec, const ParameterValues& values) {
+    const double v = value_of(spec, values, param::order);
+    if (!(v >= 1 && v <= butterworth_max_order && v == std::floor(v)))
+        throw Error("order must be an integer from 1 to " + std::to_string(butterworth_max_order) + " (got " + num(v) + ")");
+    return static_cast<int>(v);
+}
+
+double mean_edge_length(const Points& points, const Triangles& triangles) {
+    double sum = 0;
+    for (Eigen::Index f = 0; f < triangles.rows(); ++f)
+        for (int i = 0; i < 3; ++i) sum += (points.row(triangles(f, i)) - points.row(triangles(f, (i + 1) % 3))).norm();
+    return triangles.rows() > 0 ? sum / (3.0 * static_cast<double>(triangles.rows())) : 0.0;
+}
+
 } // namespace
 
 double apply_feature_radius(const FilterSpec& spec, ParameterValues& values, double radius, const std::string& source,
@@ -79,7 +95,27 @@ double apply_feature_radius(const FilterSpec& spec, ParameterValues& values, dou
                       "); all corners scaled by " + num(scale));
         return frequency;
     }
-    throw Error(source + " does not apply to " + spec.cli_name);
+    if (spec.kind == FilterKind::Butterworth) {
+        values[param::cutoff] = frequency;
+        log.push_back("cutoff sc = " + num(frequency) + " from " + source + " (" + how + ")");
+        return frequency;
+    }
+    throw Error(source + " does not apply to " + spec.cli_name +
+                (spec.kind == FilterKind::Denoise ? ": select one bump instead" : ""));
+}
+
+Operator operator_from_values(const FilterSpec& spec, const ParameterValues& values, bool has_feature) {
+    if (!spec.parameter(param::laplace_operator)) return Operator::Cotangent;
+    switch (choice_of(spec, values, param::laplace_operator)) {
+    case 1: return Operator::Cotangent;
+    case 2: return Operator::IntrinsicDelaunay;
+    case 3: return Operator::Umbrella;
+    default: break;
+    }
+    // Automatic, chosen by measurement (docs/results.md): a bump's size is geometric, so
+    // the cotangent operator; per-vertex noise is per-vertex, so the umbrella operator.
+    if (spec.kind == FilterKind::Denoise && !has_feature) return Operator::Umbrella;
+    return Operator::Cotangent;
 }
 
 ParameterValues default_values(const FilterSpec& spec, bool has_selection) {
@@ -90,7 +126,7 @@ ParameterValues default_values(const FilterSpec& spec, bool has_selection) {
 }
 
 TransferFunction design_from_values(const FilterSpec& spec, const ParameterValues& values, const FeatureEllipsoid* feature,
-                                    std::vector<std::string>& log, double* s1_used) {
+                                    std::vector<std::string>& log, double* s1_used, double mean_edge_length) {
     const FeatureShape shape = shape_of(spec, values);
     const char* shape_name = shape == FeatureShape::Sphere ? "sphere-like, s = 2/r^2" : "cylinder-like, s = 1/r^2";
     if (spec.kind == FilterKind::SecondOrder) {
@@ -149,6 +185,37 @@ TransferFunction design_from_values(const FilterSpec& spec, const ParameterValue
         for (auto& w : warnings) log.push_back("warning: " + w);
         return g;
     }
+    if (spec.kind == FilterKind::Butterworth) {
+        const int order = order_of(spec, values);
+        double cutoff = value_of(spec, values, param::cutoff);
+        const Operator op = operator_from_values(spec, values, feature != nullptr);
+        if (feature) {
+            cutoff = feature->frequency(shape);
+            log.push_back("cutoff sc = " + num(cutoff) + " from the selection (" + shape_name + ")");
+        } else {
+            log.push_back("cutoff sc = " + num(cutoff) + " as given (useSelection off)");
+        }
+        TransferFunction g = design_butterworth_lowpass(cutoff, order);
+        log.push_back("design: Butterworth lowpass of order " + std::to_string(order) + ", cutoff sc = " + num(cutoff) +
+                      (op == Operator::Umbrella ? " (per-vertex frequency)" : " (features of radius " +
+                                                                                   num(std::sqrt(2 / cutoff)) +
+                                                                                   " halved, sphere-like)") +
+                      ", operator " + operator_name(op));
+        if (s1_used) *s1_used = cutoff;
+        return g;
+    }
+    if (spec.kind == FilterKind::Denoise) {
+        const int order = order_of(spec, values);
+        const Operator op = operator_from_values(spec, values, feature != nullptr);
+        const DenoiseDesign d = feature ? design_denoise_from_bump(*feature, shape, order, op)
+                                        : design_denoise_from_sampling(mean_edge_length > 0 ? mean_edge_length : 1.0,
+                                                                       order, op);
+        log.push_back("cutoff sc = " + num(d.cutoff) + " from " + d.origin);
+        log.push_back("design: Butterworth lowpass of order " + std::to_string(order) + ", cutoff sc = " + num(d.cutoff) +
+                      ", operator " + operator_name(op));
+        if (s1_used) *s1_used = d.cutoff;
+        return d.g;
+    }
     throw Error("internal: " + spec.name + " is not a filter");
 }
 
@@ -172,7 +239,9 @@ RunOutput run_filter(const FilterSpec& spec, const ParameterValues& values, cons
         return out;
     }
 
-    out.transfer = design_from_values(spec, values, out.feature ? &*out.feature : nullptr, out.log, &out.s1_used);
+    out.op = operator_from_values(spec, values, out.feature.has_value());
+    const double h = spec.kind == FilterKind::Denoise ? mean_edge_length(input.points, input.triangles) : 0.0;
+    out.transfer = design_from_values(spec, values, out.feature ? &*out.feature : nullptr, out.log, &out.s1_used, h);
     out.log.push_back(out.transfer.describe());
     const double g1 = spec.kind == FilterKind::SecondOrder ? value_of(spec, values, param::G1) : 0.0;
     const double s_ref = out.s1_used > 0 ? out.s1_used : 1.0;
@@ -189,6 +258,7 @@ RunOutput run_filter(const FilterSpec& spec, const ParameterValues& values, cons
     options.max_iterations = static_cast<int>(cap);
     options.progress = input.progress;
     options.fix_boundary = value_of(spec, values, param::fix_boundary) != 0;
+    options.op = out.op;
     out.points = apply_filter(input.points, input.triangles, out.transfer, options, &out.report);
     for (const auto& w : out.report.warnings) out.log.push_back("warning: " + w);
     if (out.report.fixed_vertices > 0)

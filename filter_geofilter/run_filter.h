@@ -32,6 +32,7 @@ struct RunOutput {
     std::optional<Mesh> ellipsoid_mesh;         // Measure: the fitted ellipsoid as a mesh
     TransferFunction transfer;                  // the designed G(s) (filters only)
     double s1_used = 0;                         // the frequency actually used
+    Operator op = Operator::Cotangent;          // the Laplacian the filter ran on
     FilterReport report;
     std::vector<std::string> log;               // human-readable lines, in order
 };
@@ -50,8 +51,15 @@ double apply_feature_radius(const FilterSpec& spec, ParameterValues& values, dou
 
 // The transfer function for the given values, with the frequency taken from `feature`
 // when given. Throws Error naming the parameter at fault.
+// Denoise without a selection on a geometric operator cuts at the mesh's mean edge length:
+// pass it (0 = unknown: the design is then checked for h = 1 only).
 TransferFunction design_from_values(const FilterSpec& spec, const ParameterValues& values,
-                                    const FeatureEllipsoid* feature, std::vector<std::string>& log, double* s1_used = nullptr);
+                                    const FeatureEllipsoid* feature, std::vector<std::string>& log, double* s1_used = nullptr,
+                                    double mean_edge_length = 0);
+
+// The Laplacian a filter runs on: the `operator` parameter, or the filter's own choice when
+// it is Automatic (or the filter has no such parameter: the paper's cotangent).
+Operator operator_from_values(const FilterSpec& spec, const ParameterValues& values, bool has_feature);
 
 // Runs the filter. Throws Error (with the message an adapter shows verbatim) on any
 // refusal; the input is never modified.

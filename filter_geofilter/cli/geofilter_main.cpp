@@ -74,6 +74,13 @@ TransferPlot make_plot(const FilterSpec& spec, const ParameterValues& values, co
         plot.markers = {{"s1 = " + num(out.s1_used) + feature_note, out.s1_used}, {"s2 = " + num(s2), s2}};
         return plot;
     }
+    if (spec.kind == FilterKind::Butterworth || spec.kind == FilterKind::Denoise) {
+        design = "Butterworth order " + num(values.at(param::order)) + ", cutoff sc = " + num(out.s1_used) + ", operator " +
+                 operator_name(out.op);
+        plot.title = "geofilter " + spec.cli_name + ": " + design;
+        plot.markers = {{"sc = " + num(out.s1_used) + feature_note, out.s1_used}};
+        return plot;
+    }
     // Pole-zero: run_filter scaled every corner when the selection set one of them.
     PoleZeroSpec pz;
     pz.G0 = values.at(param::G0);

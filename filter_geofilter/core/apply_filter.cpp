@@ -98,7 +98,7 @@ Points apply_filter_unguarded(const Points& points, const Triangles& triangles, 
     report.active_vertices = static_cast<int>(mesh.active_vertex.size());
 
     detail::report_progress(options, 0.0, "assembling the Laplacian");
-    const Laplacian laplacian = cotan_laplacian(mesh.points, mesh.triangles);
+    const Laplacian laplacian = build_laplacian(options.op, mesh.points, mesh.triangles);
     // Each connected component is centred on its own area-weighted centroid. The constant
     // functions of a component are its eigenmodes at s = 0, so a filter scales the component
     // about that point: centring on one global centroid would let G0 != 1 pull the components

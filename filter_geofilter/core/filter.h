@@ -2,6 +2,7 @@
 // without eigenvectors.
 #pragma once
 
+#include "operators.h"
 #include "transfer_function.h"
 #include "types.h"
 
@@ -30,6 +31,7 @@ using ProgressCallback = std::function<bool(double fraction, const std::string& 
 
 struct FilterOptions {
     Solver solver = Solver::Factored;
+    Operator op = Operator::Cotangent;  // the Laplacian whose frequencies G is designed in
     // Accuracy of the result: the solvers stop once their error bound guarantees that the
     // area-weighted RMS distance between the computed and the exact filtered surface is below
     // this fraction of the bounding-box diagonal. The bounds follow from the filter's poles

@@ -88,7 +88,10 @@ std::string TransferFunction::describe() const {
             for (size_t k = 0; k < f.size(); ++k) os << (k ? " + " : "") << f[k] << (k ? (k == 1 ? " s" : " s^2") : "");
             os << ")";
         }
-        for (const auto& p : poles) os << " / (s + " << -p.real() << ")";
+        for (const auto& p : poles) {
+            if (p.imag() == 0) os << " / (s + " << -p.real() << ")";
+            else if (p.imag() > 0) os << " / (s^2 + " << -2 * p.real() << " s + " << std::norm(p) << ")";  // with its conjugate
+        }
     }
     os << "; poles:";
     if (poles.empty()) os << " none";

@@ -62,6 +62,16 @@ def _pole_zero():
             [Param("useSelection", "RichBool", False), Param("featureCorner", "RichEnum", 0, 8)] + _tail())
 
 
+def _butterworth():
+    return [Param("cutoff", "RichFloat", 25.0), Param("order", "RichInt", 4), Param("useSelection", "RichBool", False),
+            Param("operator", "RichEnum", 0, 4)] + _tail()
+
+
+def _denoise():
+    return [Param("useSelection", "RichBool", False), Param("order", "RichInt", 4),
+            Param("operator", "RichEnum", 0, 4)] + _tail()
+
+
 FILTERS = {
     "GeoFilter: Lowpass": _second_order(25, 50, 1, 1.1, 0),
     "GeoFilter: Bandpass": _second_order(25, 100, 0, 2, 0),
@@ -71,6 +81,8 @@ FILTERS = {
     "GeoFilter: Custom": _second_order(60, 120, 1, 2, 0.9),
     "GeoFilter: Pole-Zero": _pole_zero(),
     "GeoFilter: Measure Selected Feature": [],
+    "GeoFilter: Butterworth Lowpass": _butterworth(),
+    "GeoFilter: Denoise": _denoise(),
 }
 SECOND_ORDER = [n for n in FILTERS if FILTERS[n] and FILTERS[n][0].name == "s1"]
 

@@ -7,12 +7,19 @@
 #include <complex>
 #include <set>
 
+#include "core/shapes.h"
+
 using namespace geofilter;
+
+namespace {
+double reference_mean_radius(const Points& p) { return p.rowwise().norm().mean(); }
+} // namespace
 
 TEST(FilterTable, NamesAreTheOnesScriptsDependOn) {
     const std::set<std::string> expected = {"GeoFilter: Lowpass", "GeoFilter: Bandpass", "GeoFilter: Highpass",
                                             "GeoFilter: Notch", "GeoFilter: Band Exaggeration", "GeoFilter: Custom",
-                                            "GeoFilter: Measure Selected Feature", "GeoFilter: Pole-Zero"};
+                                            "GeoFilter: Measure Selected Feature", "GeoFilter: Pole-Zero",
+                                            "GeoFilter: Butterworth Lowpass", "GeoFilter: Denoise"};
     std::set<std::string> names, python, cli;
     for (const auto& f : filter_table()) {
         names.insert(f.name);
@@ -95,4 +102,73 @@ TEST(FilterTable, FeatureFrequencyDrivesS1AndKeepsTheRatio) {
     v["featureShape"] = 1;
     design_from_values(f, v, &e, log, &s1);
     EXPECT_NEAR(s1, 100, 1e-9);
+}
+
+namespace {
+bool logged(const std::vector<std::string>& log, const std::string& text) {
+    for (const auto& line : log)
+        if (line.find(text) != std::string::npos) return true;
+    return false;
+}
+} // namespace
+
+TEST(FilterTable, ButterworthCutoffFromValuesOrSelectionAndOrderChecked) {
+    const FilterSpec& f = *find_filter("butterworth");
+    EXPECT_EQ(f.python_name, "apply_geofilter_butterworth_lowpass");
+    ParameterValues v = default_values(f, false);
+    EXPECT_EQ(v.at("order"), 4);
+    v["cutoff"] = 80;
+    std::vector<std::string> log;
+    double sc = 0;
+    TransferFunction g = design_from_values(f, v, nullptr, log, &sc);
+    EXPECT_EQ(sc, 80);
+    EXPECT_NEAR(g(80), 0.5, 1e-12);
+    EXPECT_NEAR(g(160), 1 / 17.0, 1e-12);  // 1 / (1 + 2^4)
+    EXPECT_TRUE(logged(log, "operator cotangent"));
+    FeatureEllipsoid e;
+    e.radius = 0.1;
+    g = design_from_values(f, v, &e, log, &sc);
+    EXPECT_NEAR(sc, 200, 1e-9);
+    for (double bad : {0.0, 9.0, 2.5}) {
+        v["order"] = bad;
+        try {
+            design_from_values(f, v, nullptr, log);
+            ADD_FAILURE() << "order " << bad << " accepted";
+        } catch (const Error& err) {
+            EXPECT_NE(std::string(err.what()).find("order"), std::string::npos);
+        }
+    }
+}
+
+TEST(FilterTable, DenoiseCutsAtTwiceTheSelectedBumpOrPerVertexWithoutSelection) {
+    const FilterSpec& f = *find_filter("denoise");
+    EXPECT_EQ(f.name, "GeoFilter: Denoise");
+    EXPECT_EQ(f.python_name, "apply_geofilter_denoise");
+    const ParameterValues v = default_values(f, true);
+    FeatureEllipsoid bump;
+    bump.radius = 0.05;
+    std::vector<std::string> log;
+    double sc = 0;
+    TransferFunction g = design_from_values(f, v, &bump, log, &sc);
+    EXPECT_NEAR(sc, 2 / (0.1 * 0.1), 1e-9);  // cutoff radius 2 r
+    EXPECT_EQ(g.poles.size(), 4u);
+    EXPECT_EQ(operator_from_values(f, v, true), Operator::Cotangent);
+    EXPECT_TRUE(logged(log, "selected bump"));
+    log.clear();
+    g = design_from_values(f, default_values(f, false), nullptr, log, &sc);
+    EXPECT_EQ(operator_from_values(f, default_values(f, false), false), Operator::Umbrella);
+    EXPECT_NEAR(g(sc), 0.5, 1e-12);
+    EXPECT_TRUE(logged(log, "umbrella"));
+}
+
+TEST(FilterTable, DenoiseRunLogsOperatorOrderAndCutoff) {
+    const Mesh m = icosphere(3, 1.0);
+    const FilterSpec& f = *find_filter("denoise");
+    const std::vector<int> none;
+    const RunOutput out = run_filter(f, default_values(f, false), {m.points, m.triangles, none, {}});
+    EXPECT_TRUE(logged(out.log, "Butterworth lowpass of order 4"));
+    EXPECT_TRUE(logged(out.log, "operator umbrella"));
+    EXPECT_TRUE(logged(out.log, "cutoff sc = 0.5"));
+    // A sphere is all low frequency for the umbrella operator: its radius barely changes.
+    EXPECT_NEAR(reference_mean_radius(out.points), 1.0, 2e-3);
 }
