@@ -7,6 +7,9 @@
 # scripts/build.sh), build-2022/ (scripts/test-meshlab2022.sh) and build-2022-sid/
 # (scripts/test-meshlab2022.sh --suite sid: MeshLab 2025.07, float, the GUI's precision);
 # meshes/bunny00.off (scripts/fetch-meshes.sh).
+#
+#   screenshots.sh [WHICH...]   WHICH: 2020.09, build-2022, build-2022-sid (default: all three),
+#                               to redo some pictures and leave the others as they are
 set -euo pipefail
 top=$(cd "$(dirname "$0")/.." && pwd)
 out=$top/docs/screenshots
@@ -17,9 +20,18 @@ for tool in Xvfb xdotool import; do
     command -v "$tool" >/dev/null || { echo "screenshots: $tool missing (apt-get install xvfb xdotool imagemagick)" >&2; exit 1; }
 done
 [ -f "$mesh" ] || "$top/scripts/fetch-meshes.sh"
-[ -x "$ml2020" ] || { echo "screenshots: $ml2020 missing: run scripts/build.sh" >&2; exit 1; }
-# The MeshLab 2022+ builds to show, each with the test-meshlab2022.sh arguments that make it.
-builds2022=("build-2022:" "build-2022-sid:--suite sid")
+which=("$@"); [ $# -gt 0 ] || which=(2020.09 build-2022 build-2022-sid)
+shoot2020=0 builds2022=()
+for w in "${which[@]}"; do
+    # The MeshLab 2022+ builds to show, each with the test-meshlab2022.sh arguments that make it.
+    case "$w" in
+        2020.09) shoot2020=1 ;;
+        build-2022) builds2022+=("build-2022:") ;;
+        build-2022-sid) builds2022+=("build-2022-sid:--suite sid") ;;
+        *) echo "screenshots: unknown $w (2020.09, build-2022 or build-2022-sid)" >&2; exit 2 ;;
+    esac
+done
+[ "$shoot2020" = 0 ] || [ -x "$ml2020" ] || { echo "screenshots: $ml2020 missing: run scripts/build.sh" >&2; exit 1; }
 for b in "${builds2022[@]}"; do
     dir=$top/${b%%:*}
     [ -f "$dir/CMakeCache.txt" ] ||
@@ -65,6 +77,30 @@ wait_window() { # name regex -> window id
     timeout 60 xdotool search --sync --onlyvisible --name "$1" | head -n1
 }
 
+# The main window. MeshLab 2025.07 (not 2020.09 or 2022.02) first asks, on a fresh HOME,
+# whether it may send usage statistics, in a dialog over the main window: answer No, and take
+# the main window only once no such question is up.
+wait_main() { # version -> window id
+    local w q
+    for _ in $(seq 120); do
+        q=$(xdotool search --onlyvisible --name '^Send Anonymous Statistics$' 2>/dev/null | head -n1 || true)
+        if [ -n "$q" ]; then
+            # No window manager here (windowactivate needs one): focus it and press No.
+            xdotool windowfocus --sync "$q" key alt+n >/dev/null 2>&1 || true
+        else
+            w=$(xdotool search --onlyvisible --name "^MeshLab $1" 2>/dev/null | head -n1 || true)
+            if [ -n "$w" ]; then
+                sleep 2   # the question comes with the main window's first show
+                q=$(xdotool search --onlyvisible --name '^Send Anonymous Statistics$' 2>/dev/null | head -n1 || true)
+                [ -n "$q" ] || { echo "$w"; return 0; }
+                continue
+            fi
+        fi
+        sleep 0.5
+    done
+    return 1
+}
+
 shoot() { # version executable
     local version=$1 exe=$2 home=$work/home-$1
     mkdir -p "$home/run" && chmod 700 "$home/run"
@@ -73,7 +109,7 @@ shoot() { # version executable
     local pid=$!
     pids+=($pid)
     local win
-    win=$(wait_window "^MeshLab $version") || { echo "screenshots: no MeshLab $version window" >&2; cat "$work/$version.log" >&2; exit 1; }
+    win=$(wait_main "$version") || { echo "screenshots: no MeshLab $version window" >&2; cat "$work/$version.log" >&2; exit 1; }
     xdotool windowsize "$win" 1400 900
     sleep 3   # the mesh loads after the window shows
     xdotool windowfocus --sync "$win"
@@ -107,7 +143,7 @@ shoot() { # version executable
 }
 
 mkdir -p "$out"
-shoot 2020.09 "$ml2020"
+[ "$shoot2020" = 0 ] || shoot 2020.09 "$ml2020"
 for b in "${builds2022[@]}"; do
     read -r version exe < <(private_meshlab "$top/${b%%:*}") || exit 1
     [ -n "${exe:-}" ] || exit 1
