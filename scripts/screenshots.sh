@@ -1,29 +1,42 @@
 #!/usr/bin/env bash
-# Screenshots of the GeoFilter plugin in the MeshLab 2020.09 and 2022.02 GUIs, under Xvfb:
+# Screenshots of the GeoFilter plugin in the MeshLab 2020.09, 2022.02 and 2025.07 GUIs, under Xvfb:
 #   docs/screenshots/meshlab-<version>-menu.png       Filters > Smoothing, Fairing and Deformation
 #   docs/screenshots/meshlab-<version>-geofilter.png  the GeoFilter: Lowpass dialog on the bunny
 #
 # Needs: xvfb, xdotool, imagemagick (import); the default build (build/meshlab-prefix, from
-# scripts/build.sh) and build-2022/ (from scripts/test-meshlab2022.sh); meshes/bunny00.off
-# (scripts/fetch-meshes.sh).
+# scripts/build.sh), build-2022/ (scripts/test-meshlab2022.sh) and build-2022-sid/
+# (scripts/test-meshlab2022.sh --suite sid: MeshLab 2025.07, float, the GUI's precision);
+# meshes/bunny00.off (scripts/fetch-meshes.sh).
+#
+#   screenshots.sh [WHICH...]   WHICH: 2020.09, build-2022, build-2022-sid (default: all three),
+#                               to redo some pictures and leave the others as they are
 set -euo pipefail
 top=$(cd "$(dirname "$0")/.." && pwd)
 out=$top/docs/screenshots
 mesh=${GEOFILTER_SCREENSHOT_MESH:-$top/meshes/bunny00.off}
 ml2020=${GEOFILTER_BUILD_DIR:-$top/build}/meshlab-prefix/bin/meshlab
-cache2022=$top/build-2022/CMakeCache.txt
 
 for tool in Xvfb xdotool import; do
     command -v "$tool" >/dev/null || { echo "screenshots: $tool missing (apt-get install xvfb xdotool imagemagick)" >&2; exit 1; }
 done
 [ -f "$mesh" ] || "$top/scripts/fetch-meshes.sh"
-[ -x "$ml2020" ] || { echo "screenshots: $ml2020 missing: run scripts/build.sh" >&2; exit 1; }
-[ -f "$cache2022" ] || { echo "screenshots: build-2022/ missing: run scripts/test-meshlab2022.sh" >&2; exit 1; }
-cached() { sed -n "s/^$1:[A-Z]*=//p" "$cache2022"; }
-distrib2022=$(cached MESHLAB_2022_DISTRIB_DIR)
-plugin2022=$(cached GEOFILTER_MESHLAB2022_PLUGIN_DIR)/libfilter_geofilter.so
-[ -x "$distrib2022/meshlab" ] && [ -f "$plugin2022" ] ||
-    { echo "screenshots: MeshLab 2022 GUI or plugin missing: run scripts/test-meshlab2022.sh" >&2; exit 1; }
+which=("$@"); [ $# -gt 0 ] || which=(2020.09 build-2022 build-2022-sid)
+shoot2020=0 builds2022=()
+for w in "${which[@]}"; do
+    # The MeshLab 2022+ builds to show, each with the test-meshlab2022.sh arguments that make it.
+    case "$w" in
+        2020.09) shoot2020=1 ;;
+        build-2022) builds2022+=("build-2022:") ;;
+        build-2022-sid) builds2022+=("build-2022-sid:--suite sid") ;;
+        *) echo "screenshots: unknown $w (2020.09, build-2022 or build-2022-sid)" >&2; exit 2 ;;
+    esac
+done
+[ "$shoot2020" = 0 ] || [ -x "$ml2020" ] || { echo "screenshots: $ml2020 missing: run scripts/build.sh" >&2; exit 1; }
+for b in "${builds2022[@]}"; do
+    dir=$top/${b%%:*}
+    [ -f "$dir/CMakeCache.txt" ] ||
+        { echo "screenshots: ${b%%:*}/ missing: run scripts/test-meshlab2022.sh ${b#*:}" >&2; exit 1; }
+done
 
 work=$(mktemp -d)
 pids=()
@@ -41,17 +54,51 @@ pids+=($!)
 export DISPLAY=":$n"
 for _ in $(seq 50); do xdotool getdisplaygeometry >/dev/null 2>&1 && break; sleep 0.2; done
 
-# MeshLab 2022 finds plugins and shaders next to its executable: a private folder with a copy
+# MeshLab 2022+ finds plugins and shaders next to its executable: a private folder with a copy
 # of the build's GUI (its RUNPATH still finds libmeshlab-common.so), the build's plugins and
-# ours, so that nothing is added to the cached MeshLab build.
-p2022=$work/meshlab-2022
-mkdir -p "$p2022/plugins"
-cp "$distrib2022/meshlab" "$p2022/"
-ln -s "$distrib2022/shaders" "$p2022/shaders"
-for f in "$distrib2022"/plugins/*.so "$plugin2022"; do ln -s "$f" "$p2022/plugins/"; done
+# ours, so that nothing is added to the cached MeshLab build. Prints "version executable".
+private_meshlab() { # GeoFilter build folder configured against MeshLab 2022+
+    local cache=$1/CMakeCache.txt distrib plugin version p
+    cached() { sed -n "s/^$1:[A-Z]*=//p" "$cache"; }
+    distrib=$(cached MESHLAB_2022_DISTRIB_DIR)
+    plugin=$(cached GEOFILTER_MESHLAB2022_PLUGIN_DIR)/libfilter_geofilter.so
+    version=$(cached MESHLAB_2022_VERSION)
+    [ -x "$distrib/meshlab" ] && [ -f "$plugin" ] && [ -n "$version" ] ||
+        { echo "screenshots: the MeshLab GUI or plugin of $1 is missing: run scripts/test-meshlab2022.sh" >&2; return 1; }
+    p=$work/meshlab-$version
+    mkdir -p "$p/plugins"
+    cp "$distrib/meshlab" "$p/"
+    ln -s "$distrib/shaders" "$p/shaders"
+    for f in "$distrib"/plugins/*.so "$plugin"; do ln -s "$f" "$p/plugins/"; done
+    echo "$version $p/meshlab"
+}
 
 wait_window() { # name regex -> window id
     timeout 60 xdotool search --sync --onlyvisible --name "$1" | head -n1
+}
+
+# The main window. MeshLab 2025.07 (not 2020.09 or 2022.02) first asks, on a fresh HOME,
+# whether it may send usage statistics, in a dialog over the main window: answer No, and take
+# the main window only once no such question is up.
+wait_main() { # version -> window id
+    local w q
+    for _ in $(seq 120); do
+        q=$(xdotool search --onlyvisible --name '^Send Anonymous Statistics$' 2>/dev/null | head -n1 || true)
+        if [ -n "$q" ]; then
+            # No window manager here (windowactivate needs one): focus it and press No.
+            xdotool windowfocus --sync "$q" key alt+n >/dev/null 2>&1 || true
+        else
+            w=$(xdotool search --onlyvisible --name "^MeshLab $1" 2>/dev/null | head -n1 || true)
+            if [ -n "$w" ]; then
+                sleep 2   # the question comes with the main window's first show
+                q=$(xdotool search --onlyvisible --name '^Send Anonymous Statistics$' 2>/dev/null | head -n1 || true)
+                [ -n "$q" ] || { echo "$w"; return 0; }
+                continue
+            fi
+        fi
+        sleep 0.5
+    done
+    return 1
 }
 
 shoot() { # version executable
@@ -62,7 +109,7 @@ shoot() { # version executable
     local pid=$!
     pids+=($pid)
     local win
-    win=$(wait_window "^MeshLab $version") || { echo "screenshots: no MeshLab $version window" >&2; cat "$work/$version.log" >&2; exit 1; }
+    win=$(wait_main "$version") || { echo "screenshots: no MeshLab $version window" >&2; cat "$work/$version.log" >&2; exit 1; }
     xdotool windowsize "$win" 1400 900
     sleep 3   # the mesh loads after the window shows
     xdotool windowfocus --sync "$win"
@@ -96,5 +143,9 @@ shoot() { # version executable
 }
 
 mkdir -p "$out"
-shoot 2020.09 "$ml2020"
-shoot 2022.02 "$p2022/meshlab"
+[ "$shoot2020" = 0 ] || shoot 2020.09 "$ml2020"
+for b in "${builds2022[@]}"; do
+    read -r version exe < <(private_meshlab "$top/${b%%:*}") || exit 1
+    [ -n "${exe:-}" ] || exit 1
+    shoot "$version" "$exe"
+done

@@ -8,7 +8,10 @@
 #      UndefinedBehaviorSanitizer;
 #   3. the MeshLab 2022.02 plugin: MeshLab 2022.02 built from Debian trixie's source package
 #      (cached in /var/cache/geofilter after the first run), the plugin built against it, and
-#      its PluginManager test, which also compares results with the 2020.09 plugin.
+#      its PluginManager test, which also compares results with the 2020.09 plugin;
+#   4. the same against MeshLab 2025.07 (Debian sid's source package, cached the same way), in
+#      float (the GUI's precision) and in double (pymeshlab 2025.7's): every filter run
+#      through pymeshlab's FunctionSet by python name and python keyword names.
 set -euo pipefail
 top=$(cd "$(dirname "$0")/.." && pwd)
 build=${GEOFILTER_BUILD_DIR:-$top/build}
@@ -35,3 +38,9 @@ cmake --build "$asan" -j"$(nproc)"
 
 echo "== MeshLab 2022.02 (FilterPlugin API) plugin"
 "$top/scripts/test-meshlab2022.sh"
+
+echo "== MeshLab 2025.07 plugin, float (the GUI's precision)"
+"$top/scripts/test-meshlab2022.sh" --suite sid
+
+echo "== MeshLab 2025.07 plugin, double (pymeshlab 2025.7's precision)"
+"$top/scripts/test-meshlab2022.sh" --suite sid --double

@@ -1,9 +1,11 @@
 // The MeshLab 2022.02+ plugin driven the way pymeshlab drives it: MeshLab's own
 // PluginManager loads the plugin folders, pymeshlab::FunctionSet (MeshLab's common/python,
-// the table pymeshlab builds its methods from) maps python names to filters, parameters
-// start from initParameterList and are overwritten by value, applyFilter runs with a
-// postCondition mask and a callback, results come back as a QVariant map and errors as
-// MLException. Meshes come from filter_create and from code; files go through io_base.
+// the table pymeshlab builds its methods from) maps python names to filters and python
+// keyword names back to MeshLab parameters, parameters start from initParameterList and are
+// overwritten by value, applyFilter runs with a postCondition mask and a callback, results
+// come back as a QVariant map and errors as MLException. Every GeoFilter filter is run at
+// least once the way ms.apply_filter('apply_geofilter_...', s1=..., useselection=...) runs it
+// (applyPython). Meshes come from filter_create and from code; files go through io_base.
 //
 // Besides its own checks, the test writes cases (input PLY, parameters, output PLY) to
 // GEOFILTER_TEST_WORKDIR/cases.json, which test_compare_2020.py replays with the 2020.09
@@ -132,9 +134,26 @@ bool collectProgress(const int pos, const char *str)
 
 using Values = std::map<std::string, QVariant>;
 
-// What pymeshlab's applyFilter/applyFilterRPL do, minus Python: defaults from
-// initParameterList, given values set by type, requirements, the document state, the call,
-// and compaction of every mesh afterwards.
+// A value set by the parameter's type. An enum takes an index, or, as pymeshlab's keyword
+// arguments allow, one of its labels.
+void setValue(RichParameter &p, const QVariant &v, const std::string &name)
+{
+	if (p.isOfType<RichEnum>()) {
+		const QStringList &labels = dynamic_cast<const RichEnum &>(p).enumvalues;
+		const int i = v.type() == QVariant::String ? labels.indexOf(v.toString()) : v.toInt();
+		if (i < 0 || i >= labels.size())
+			throw std::runtime_error(name + ": '" + v.toString().toStdString() + "' is none of the enum's values");
+		p.setValue(IntValue(i));
+	}
+	else if (p.value().isBool()) p.setValue(BoolValue(v.toBool()));
+	else if (p.value().isInt()) p.setValue(IntValue(v.toInt()));
+	else if (p.value().isFloat()) p.setValue(FloatValue(Scalarm(v.toDouble())));
+	else throw std::runtime_error("unsupported parameter type for " + name);
+}
+
+FilterRun execute(MeshDocument &md, const Found &f, const RichParameterList &rpl);
+
+// By MeshLab name and MeshLab parameter names, as a .mlx script or the GUI's dialog states them.
 FilterRun apply(MeshDocument &md, const Found &f, const Values &values = {})
 {
 	if (!f.plugin || !f.action) throw std::runtime_error("filter not found");
@@ -142,12 +161,51 @@ FilterRun apply(MeshDocument &md, const Found &f, const Values &values = {})
 	for (const auto &[name, v] : values) {
 		const QString n = qs(name);
 		if (!rpl.hasParameter(n)) throw std::runtime_error("no parameter " + name);
-		RichParameter &p = rpl.getParameterByName(n);
-		if (p.value().isBool()) p.setValue(BoolValue(v.toBool()));
-		else if (p.value().isInt()) p.setValue(IntValue(v.toInt()));
-		else if (p.value().isFloat()) p.setValue(FloatValue(Scalarm(v.toDouble())));
-		else throw std::runtime_error("unsupported parameter type for " + name);
+		setValue(rpl.getParameterByName(n), v, name);
 	}
+	return execute(md, f, rpl);
+}
+
+// pymeshlab's keyword arguments: python parameter names with Python's values (bool, int,
+// float, or str for an enum's label).
+using Kwargs = std::map<std::string, QVariant>;
+
+// ms.apply_filter(python, **kwargs) as pymeshlab's MeshSet::applyFilter does it, on the objects
+// of MeshLab's src/common/python it is built on: FunctionSet::filterFunction gives the Function,
+// whose meshlabFunctionName() names the filter; each keyword must be one of the Function's
+// parameters (Function::contains, on FunctionParameter::pythonName: the MeshLab name through
+// computePythonName, i.e. lower-cased), and getFilterFunctionParameter(..).meshlabName() names
+// the parameter to set in the list initParameterList made for the current document. pymeshlab
+// raises on an unknown keyword (since 2022.2): so does this.
+FilterRun applyPython(MeshDocument &md, const std::string &python, const Kwargs &kwargs = {})
+{
+	if (!Host::functions->containsFilterFunction(qs(python)))
+		throw std::runtime_error("no python filter " + python);
+	const pymeshlab::Function &fn = Host::functions->filterFunction(qs(python));
+	const Found f = byName(fn.meshlabFunctionName());
+	if (!f.plugin || !f.action) throw std::runtime_error(python + ": no filter " + fn.meshlabFunctionName().toStdString());
+	RichParameterList rpl = f.plugin->initParameterList(f.action, md);
+	for (const auto &[key, v] : kwargs) {
+		if (!fn.contains(qs(key))) throw std::runtime_error(python + ": no python parameter " + key);
+		const QString meshlab = fn.getFilterFunctionParameter(qs(key)).meshlabName();
+		if (!rpl.hasParameter(meshlab)) throw std::runtime_error(python + ": " + key + " maps to no parameter");
+		setValue(rpl.getParameterByName(meshlab), v, key);
+	}
+	return execute(md, f, rpl);
+}
+
+// The python keyword names of MeshLab-named values: what a pymeshlab user types.
+Kwargs pythonKwargs(const Values &values)
+{
+	Kwargs k;
+	for (const auto &[name, v] : values) k[qs(name).toLower().toStdString()] = v;
+	return k;
+}
+
+// What pymeshlab's applyFilter/applyFilterRPL do after the parameters, minus Python:
+// requirements, the document state, the call, and compaction of every mesh afterwards.
+FilterRun execute(MeshDocument &md, const Found &f, const RichParameterList &rpl)
+{
 	FilterRun run;
 	if (md.mm() != nullptr) {
 		QStringList missing;
@@ -172,14 +230,9 @@ FilterRun apply(MeshDocument &md, const Found &f, const Values &values = {})
 	return run;
 }
 
-FilterRun apply(MeshDocument &md, const std::string &name, const Values &values = {})
-{
-	return apply(md, byName(qs(name)), values);
-}
-
 MeshModel &createSphere(MeshDocument &md, double radius, int subdiv)
 {
-	apply(md, byPythonName("create_sphere"), {{"radius", radius}, {"subdiv", subdiv}});
+	applyPython(md, "create_sphere", {{"radius", radius}, {"subdiv", subdiv}});
 	if (md.mm() == nullptr || md.mm()->cm.vn != 10 * (1 << (2 * subdiv)) + 2)
 		throw std::runtime_error("filter_create's sphere is not the expected icosphere");
 	return *md.mm();
@@ -271,6 +324,8 @@ double eq15(double s, double s1, double s2, double G0, double G1, double Ginf)
 }
 
 const Values kFig6 = {{"s1", 10.0}, {"s2", 25.0}, {"G0", 1.0}, {"G1", 30.0}, {"Ginf", 0.0}, {"useSelection", false}};
+// The same as pymeshlab keywords: ms.apply_filter('apply_geofilter_custom', s1=10, ..., useselection=False).
+const Kwargs kFig6Python = {{"s1", 10.0}, {"s2", 25.0}, {"g0", 1.0}, {"g1", 30.0}, {"ginf", 0.0}, {"useselection", false}};
 
 // ---------------------------------------------------------------------------------------
 
@@ -307,8 +362,11 @@ TEST(Loading, EveryFilterFoundByNameAndPythonName)
 		const pymeshlab::Function &fn = Host::functions->filterFunction(qs(s.python_name));
 		EXPECT_EQ(fn.meshlabFunctionName().toStdString(), s.name);
 		EXPECT_EQ(fn.parametersNumber(), s.parameters.size());
-		for (const auto &par : s.parameters)
-			EXPECT_TRUE(fn.contains(qs(par.name).toLower())) << "no python parameter " << par.name;
+		for (const auto &par : s.parameters) {
+			const QString python = qs(par.name).toLower();
+			ASSERT_TRUE(fn.contains(python)) << "no python parameter " << par.name;
+			EXPECT_EQ(fn.getFilterFunctionParameter(python).meshlabName().toStdString(), par.name);
+		}
 	}
 }
 
@@ -362,7 +420,7 @@ TEST(Sphere, Fig6RadiusRatiosFollowEq15)
 		SCOPED_TRACE("r = " + std::to_string(r));
 		MeshDocument md;
 		MeshModel &m = createSphere(md, r, level);
-		const FilterRun run = apply(md, byPythonName("apply_geofilter_custom"), kFig6);
+		const FilterRun run = applyPython(md, "apply_geofilter_custom", kFig6Python);
 		const double ratio = meanRadius(m.cm) / r;
 		const double expected = std::abs(eq15(2 / (r * r), 10, 25, 1, 30, 0));
 		EXPECT_NEAR(ratio / expected, 1.0, 0.02) << "ratio " << ratio << ", G(2/r^2) = " << expected;
@@ -373,9 +431,9 @@ TEST(Sphere, PaperSolverAgrees)
 {
 	MeshDocument md;
 	MeshModel &m = createSphere(md, 0.45, 3);
-	Values v = kFig6;
-	v["solver"] = 1;
-	const FilterRun run = apply(md, "GeoFilter: Custom", v);
+	Kwargs v = kFig6Python;
+	v["solver"] = "Jacobi-PCG (paper)";   // an enum by its label, as pymeshlab allows
+	const FilterRun run = applyPython(md, "apply_geofilter_custom", v);
 	bool mentioned = false;
 	for (const auto &l : run.log) mentioned = mentioned || l.find("solver Jacobi-PCG") != std::string::npos;
 	EXPECT_TRUE(mentioned);
@@ -386,7 +444,7 @@ TEST(Running, LogsProgressesAndReportsWhatChanged)
 {
 	MeshDocument md;
 	MeshModel &m = createSphere(md, 1.0, 3);
-	const FilterRun run = apply(md, byPythonName("apply_geofilter_lowpass"), {{"useSelection", false}});
+	const FilterRun run = applyPython(md, "apply_geofilter_lowpass", {{"useselection", false}});
 	EXPECT_EQ(run.postConditionMask, unsigned(MeshModel::MM_VERTCOORD | MeshModel::MM_VERTNORMAL | MeshModel::MM_FACENORMAL));
 	EXPECT_TRUE(run.outputs.empty());
 	bool peak = false, solver = false;
@@ -411,11 +469,29 @@ TEST(Running, LogsProgressesAndReportsWhatChanged)
 	EXPECT_GT((v0.cN() * v0.cP()) / v0.cP().Norm() / v0.cN().Norm(), Scalarm(0.99));
 }
 
-void expectRefusedUnchanged(MeshDocument &md, const std::string &filter, const Values &values, const std::string &words)
+// The GUI's dialog and .mlx scripts reach a filter by its MeshLab name and parameter names,
+// pymeshlab by the python ones: the same filter, the same result, bit for bit.
+TEST(Running, MeshLabAndPythonNamesGiveTheSameMesh)
 {
+	for (const FilterSpec &s : geofilter::filter_table()) {
+		if (s.kind == geofilter::FilterKind::Measure) continue;
+		SCOPED_TRACE(s.name);
+		MeshDocument byMeshLab, byPython;
+		createSphere(byMeshLab, 1.0, 3);
+		createSphere(byPython, 1.0, 3);
+		apply(byMeshLab, byName(qs(s.name)), {{"useSelection", false}, {"solver", 0}});
+		applyPython(byPython, s.python_name, {{"useselection", false}, {"solver", "Factored (sparse Cholesky)"}});
+		EXPECT_TRUE(Snapshot(byMeshLab) == Snapshot(byPython));
+	}
+}
+
+// Through pymeshlab's route: python filter name and keywords; the message names the MeshLab filter.
+void expectRefusedUnchanged(MeshDocument &md, const std::string &python, const Kwargs &kwargs, const std::string &words)
+{
+	const std::string filter = Host::functions->filterFunction(qs(python)).meshlabFunctionName().toStdString();
 	const Snapshot before(md);
 	try {
-		apply(md, filter, values);
+		applyPython(md, python, kwargs);
 		ADD_FAILURE() << filter << " accepted what it should refuse (" << words << ")";
 	} catch (const MLException &e) {
 		EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
@@ -429,8 +505,8 @@ TEST(Errors, UnstableDesignLeavesTheMeshBitForBitUnchanged)
 	MeshDocument md;
 	createSphere(md, 1.0, 3);
 	// docs/paper-notes.md §4: real roots 18.0 and 52.0 of the denominator.
-	expectRefusedUnchanged(md, "GeoFilter: Custom",
-	                       {{"s1", 25.0}, {"s2", 10.0}, {"G0", 1.0}, {"G1", 3.0}, {"Ginf", 0.0}, {"useSelection", false}},
+	expectRefusedUnchanged(md, "apply_geofilter_custom",
+	                       {{"s1", 25.0}, {"s2", 10.0}, {"g0", 1.0}, {"g1", 3.0}, {"ginf", 0.0}, {"useselection", false}},
 	                       "stab");
 }
 
@@ -438,7 +514,7 @@ TEST(Errors, UseSelectionWithoutSelectionIsRefused)
 {
 	MeshDocument md;
 	createSphere(md, 1.0, 3);
-	expectRefusedUnchanged(md, "GeoFilter: Lowpass", {{"useSelection", true}}, "no faces are selected");
+	expectRefusedUnchanged(md, "apply_geofilter_lowpass", {{"useselection", true}}, "no faces are selected");
 }
 
 TEST(Errors, AmplificationBeyondTheScalarRangeIsRefused)
@@ -446,9 +522,25 @@ TEST(Errors, AmplificationBeyondTheScalarRangeIsRefused)
 	MeshDocument md;
 	createSphere(md, 1.0, 3);
 	// A gain of 1e38 at s = 0 scales the sphere past the 1e37 guard (float range ends at 3.4e38).
-	expectRefusedUnchanged(md, "GeoFilter: Pole-Zero",
-	                       {{"G0", 1e38}, {"z1", 100.0}, {"z2", 0.0}, {"p1", 200.0}, {"p2", 0.0}, {"useSelection", false}},
+	expectRefusedUnchanged(md, "apply_geofilter_pole_zero",
+	                       {{"g0", 1e38}, {"z1", 100.0}, {"z2", 0.0}, {"p1", 200.0}, {"p2", 0.0}, {"useselection", false}},
 	                       "not finite");
+}
+
+// pymeshlab's keywords are the lower-cased names: MeshLab's spelling is no keyword, and an
+// enum label must be one of the enum's. Refused before the filter runs, the mesh untouched.
+TEST(Errors, PythonKeywordsAreLowerCaseAndChecked)
+{
+	MeshDocument md;
+	createSphere(md, 1.0, 3);
+	const Snapshot before(md);
+	for (const Kwargs &k : {Kwargs{{"useSelection", false}}, Kwargs{{"G0", 1.0}}, Kwargs{{"radius", 0.5}},
+	                        Kwargs{{"solver", "Cholesky"}}, Kwargs{{"solver", 2}}}) {
+		SCOPED_TRACE(k.begin()->first);
+		EXPECT_THROW(applyPython(md, "apply_geofilter_lowpass", k), std::runtime_error);
+	}
+	EXPECT_THROW(applyPython(md, "apply_geofilter_low_pass"), std::runtime_error);
+	EXPECT_TRUE(Snapshot(md) == before);
 }
 
 TEST(Errors, ParameterOfTheWrongTypeIsNamed)
@@ -478,7 +570,7 @@ TEST(Measure, ReturnsTheEllipsoidAndAddsALayer)
 	MeshModel &m = createSphere(md, 1.0, 3);
 	ASSERT_GT(selectCap(m.cm, 0.5), 0);
 	const std::vector<char> before = meshBytes(m.cm);
-	const FilterRun run = apply(md, byPythonName("compute_geofilter_feature_measure"));
+	const FilterRun run = applyPython(md, "compute_geofilter_feature_measure");
 	EXPECT_TRUE(meshBytes(m.cm) == before) << "measuring changed the measured mesh";
 	EXPECT_EQ(run.postConditionMask, unsigned(MeshModel::MM_NONE));
 	ASSERT_EQ(md.meshNumber(), 2u);
@@ -521,7 +613,7 @@ TEST(Measure, WithoutSelectionIsRefused)
 {
 	MeshDocument md;
 	createSphere(md, 1.0, 3);
-	expectRefusedUnchanged(md, "GeoFilter: Measure Selected Feature", {}, "no faces are selected");
+	expectRefusedUnchanged(md, "compute_geofilter_feature_measure", {}, "no faces are selected");
 }
 
 // ---------------------------------------------------------------------------------------
@@ -600,7 +692,12 @@ TEST(Comparison, WriteCasesFor2020)
 			if (p.type == geofilter::ParameterType::Bool) values[p.name] = values[p.name].toDouble() != 0;
 			else if (p.type != geofilter::ParameterType::Float) values[p.name] = int(values[p.name].toDouble());
 
-		const FilterRun run = apply(md, c.filter, values);
+		// As a pymeshlab user calls it: ms.apply_filter('apply_geofilter_...', s1=..., useselection=...),
+		// enums by label (pymeshlab's documented form); the 2020.09 script gets the MeshLab names.
+		Values byLabel = values;
+		for (const auto &p : tableEntry(c.filter).parameters)
+			if (p.type == geofilter::ParameterType::Enum) byLabel[p.name] = qs(p.choices.at(size_t(values.at(p.name).toInt())));
+		const FilterRun run = applyPython(md, tableEntry(c.filter).python_name, pythonKwargs(byLabel));
 		const QString output = dir + "/out2022-" + qs(c.tag) + ".ply";
 		const bool measure = tableEntry(c.filter).kind == geofilter::FilterKind::Measure;
 		// The measure's product is its new layer; filters change the current mesh.
