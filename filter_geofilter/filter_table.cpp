@@ -76,6 +76,14 @@ FilterSpec second_order(const std::string& title, const std::string& python, con
             second_order_parameters(defaults)};
 }
 
+// solver, tolerance, maxIterations, featureShape and fixBoundary, as the second-order entries have them.
+void append_shared(std::vector<ParameterSpec>& p) {
+    for (const auto& shared : second_order_parameters({}))
+        if (shared.name == param::feature_shape || shared.name == param::fix_boundary || shared.name == param::solver ||
+            shared.name == param::tolerance || shared.name == param::max_iterations)
+            p.push_back(shared);
+}
+
 FilterSpec pole_zero() {
     std::vector<ParameterSpec> p;
     p.push_back({param::G0, ParameterType::Float, 1, "G0: gain at s = 0", "Gain of the lowest frequencies.", {}});
@@ -95,11 +103,7 @@ FilterSpec pole_zero() {
                  {}});
     p.push_back({param::feature_corner, ParameterType::Enum, 0, "featureCorner",
                  "Which corner frequency the selected feature sets (it must be in use).", corners});
-    for (const auto& shared : second_order_parameters({}))
-        if (shared.name == param::feature_shape || shared.name == param::fix_boundary || shared.name == param::solver ||
-            shared.name == param::tolerance ||
-            shared.name == param::max_iterations)
-            p.push_back(shared);
+    append_shared(p);
     return {"GeoFilter: Pole-Zero",
             "apply_geofilter_pole_zero",
             "polezero",
@@ -123,13 +127,6 @@ ParameterSpec operator_parameter(const std::string& automatic) {
             {"Automatic", "Cotangent", "Intrinsic Delaunay", "Umbrella (per-vertex)"}};
 }
 
-// solver, tolerance, maxIterations, featureShape and fixBoundary, as the second-order entries have them.
-void append_shared(std::vector<ParameterSpec>& p) {
-    for (const auto& shared : second_order_parameters({}))
-        if (shared.name == param::feature_shape || shared.name == param::fix_boundary || shared.name == param::solver ||
-            shared.name == param::tolerance || shared.name == param::max_iterations)
-            p.push_back(shared);
-}
 
 FilterSpec butterworth_lowpass() {
     std::vector<ParameterSpec> p;

@@ -1,4 +1,5 @@
 #include "boundary.h"
+#include "pcg.h"
 #include "components.h"
 #include "mesh_prep.h"
 #include "solvers.h"
@@ -56,6 +57,15 @@ Eigen::MatrixXd apply_polynomial(const SparseMatrix& kt, const std::vector<doubl
 
 double allowed_error(const FilterProblem& problem) {
     return problem.options.tolerance * problem.size * std::sqrt(problem.laplacian.mass.sum());
+}
+
+void record_pcg_outcome(const PcgOutcome& outcome, double allowed_error, const std::string& advice, FilterReport& report) {
+    report.iterations += outcome.iterations;
+    report.relative_residual = std::max(report.relative_residual, outcome.relative_residual);
+    if (outcome.cancelled) throw Error("cancelled by the user");
+    if (!outcome.converged)
+        throw Error("the solver did not converge in " + std::to_string(outcome.iterations) + " iterations (its error bound is " +
+                    format_number(outcome.error_bound / allowed_error) + " times what the tolerance allows); " + advice);
 }
 
 void report_progress(const FilterOptions& options, double fraction, const std::string& stage) {

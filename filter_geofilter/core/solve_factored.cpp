@@ -131,7 +131,7 @@ public:
         const PcgOutcome outcome =
             block_pcg(quadratic, preconditioner, y, x, bound, allowed_error, options.max_iterations,
                       [&](int, double) { return !options.progress || options.progress(progress, "solving"); });
-        record(outcome, allowed_error);
+        record_pcg_outcome(outcome, allowed_error, "raise maxIterations or the tolerance", report_);
         report_.seconds_solve += seconds_since(t);
         return x;
     }
@@ -142,16 +142,6 @@ private:
         const auto t = std::chrono::steady_clock::now();
         cholesky_->factorize(shift);
         report_.seconds_factorization += seconds_since(t);
-    }
-
-    void record(const PcgOutcome& outcome, double allowed_error) {
-        report_.iterations += outcome.iterations;
-        report_.relative_residual = std::max(report_.relative_residual, outcome.relative_residual);
-        if (outcome.cancelled) throw Error("cancelled by the user");
-        if (!outcome.converged)
-            throw Error("the solver did not converge in " + std::to_string(outcome.iterations) +
-                        " iterations (its error bound is " + format_number(outcome.error_bound / allowed_error) +
-                        " times what the tolerance allows); raise maxIterations or the tolerance");
     }
 
     const FilterProblem& problem_;

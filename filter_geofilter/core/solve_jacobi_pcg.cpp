@@ -83,14 +83,10 @@ public:
                                                0.0, 1.0);
             return !options.progress || options.progress(progress_base + 0.4 * fraction, "solving (Jacobi-PCG)");
         });
-        report_.iterations += outcome.iterations;
-        report_.relative_residual = std::max(report_.relative_residual, outcome.relative_residual);
-        if (outcome.cancelled) throw Error("cancelled by the user");
-        if (!outcome.converged)
-            throw Error("the Jacobi-PCG solver did not converge in " + std::to_string(outcome.iterations) +
-                        " iterations (its error bound is " + format_number(outcome.error_bound / allowed_error) +
-                        " times what the tolerance allows); raise maxIterations or the tolerance, or use the factored"
-                        " solver");
+        record_pcg_outcome(outcome, allowed_error,
+                           "raise maxIterations or the tolerance, or use the factored solver (the Jacobi-PCG is the"
+                           " paper's reference, slow for wide features)",
+                           report_);
     }
 
 private:

@@ -3,6 +3,7 @@
 
 #include "filter.h"
 #include "laplace.h"
+#include "pcg.h"
 
 #include <cholmod.h>
 
@@ -31,6 +32,10 @@ Eigen::MatrixXd apply_polynomial(const SparseMatrix& kt, const std::vector<doubl
 
 // The fill-reducing ordering every CHOLMOD factorisation of the project uses.
 void use_amd_ordering(cholmod_common& common);
+
+// Adds a CG run to the report; throws Error if it was cancelled or did not converge
+// (`advice` ends the message: what the user can change).
+void record_pcg_outcome(const PcgOutcome& outcome, double allowed_error, const std::string& advice, FilterReport& report);
 
 // Throws Error naming the stage if the user cancelled through the progress callback.
 void report_progress(const FilterOptions& options, double fraction, const std::string& stage);

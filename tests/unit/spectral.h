@@ -36,6 +36,17 @@ inline Points spectral_filter(const Spectrum& s, const Points& p, const Transfer
     return out;
 }
 
+// A square sheet with waves of several frequencies and a saddle: open boundary, curved, no
+// symmetry a filter could hide behind.
+inline Mesh wavy_sheet(int n) {
+    Mesh g = grid(n, 1.0);
+    for (Eigen::Index i = 0; i < g.points.rows(); ++i) {
+        const double x = g.points(i, 0), y = g.points(i, 1);
+        g.points(i, 2) = 0.05 * std::sin(9 * x) * std::cos(7 * y) + 0.1 * x * y;
+    }
+    return g;
+}
+
 inline double bbox_diagonal(const Points& p) { return (p.colwise().maxCoeff() - p.colwise().minCoeff()).norm(); }
 
 inline double mean_radius(const Points& p, const Eigen::RowVector3d& centre = Eigen::RowVector3d::Zero()) {

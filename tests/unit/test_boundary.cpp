@@ -13,14 +13,6 @@ using namespace geofilter::reference;
 
 namespace {
 
-Mesh wavy_sheet() {
-    Mesh g = grid(24, 1.0);
-    for (Eigen::Index i = 0; i < g.points.rows(); ++i) {
-        const double x = g.points(i, 0), y = g.points(i, 1);
-        g.points(i, 2) = 0.05 * std::sin(9 * x) * std::cos(7 * y) + 0.1 * x * y;
-    }
-    return g;
-}
 
 // The Dirichlet split of a mesh, built here with dense matrices (no core routine but the
 // Laplacian): K_II, K_IB, the interior masses and the harmonic extension from a dense
@@ -56,7 +48,7 @@ DenseDirichlet dense_dirichlet(const Laplacian& l, const std::vector<bool>& on_b
 } // namespace
 
 TEST(Boundary, HarmonicExtensionIsHarmonicAndEqualsADenseSolve) {
-    const Mesh g = wavy_sheet();
+    const Mesh g = wavy_sheet(24);
     const std::vector<bool> on_boundary = boundary_vertices(g.triangles, g.points.rows());
     const Laplacian l = cotan_laplacian(g.points, g.triangles);
     const Eigen::MatrixXd p = g.points;
@@ -89,7 +81,7 @@ TEST(Boundary, FindsTheRimOfAGrid) {
 }
 
 TEST(Boundary, FixedBoundaryEqualsExactDirichletSpectralFilter) {
-    const Mesh g = wavy_sheet();
+    const Mesh g = wavy_sheet(24);
     const std::vector<bool> on_boundary = boundary_vertices(g.triangles, g.points.rows());
     const Laplacian l = cotan_laplacian(g.points, g.triangles);
     // The reference is dense throughout: the dense harmonic extension and the dense Dirichlet
@@ -144,7 +136,7 @@ TEST(Boundary, ClosedMeshIsFilteredAsWithoutTheOptionAndSaysSo) {
 
 TEST(Boundary, FreeBoundaryMovesTheRim) {
     // The default: the paper's natural boundary lets the rim move (a lowpass pulls it in).
-    const Mesh g = wavy_sheet();
+    const Mesh g = wavy_sheet(24);
     const Points out = apply_filter(g.points, g.triangles, design_second_order({25, 50, 1, 1.1, 0}));
     EXPECT_GT((out.row(0) - g.points.row(0)).norm(), 1e-4);
 }

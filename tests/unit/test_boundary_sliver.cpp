@@ -18,11 +18,7 @@ namespace {
 // of its triangles: that triangle's area is 1e-9 of its longest edge squared (the
 // degenerate-face test skips faces below 1e-12), so its cotangents are ~1e9.
 Mesh sheet_with_sliver() {
-    Mesh g = grid(16, 1.0);
-    for (Eigen::Index i = 0; i < g.points.rows(); ++i) {
-        const double x = g.points(i, 0), y = g.points(i, 1);
-        g.points(i, 2) = 0.05 * std::sin(9 * x) * std::cos(7 * y) + 0.1 * x * y;
-    }
+    Mesh g = wavy_sheet(16);
     const Eigen::Index face = 2 * (16 * 8 + 8);  // a triangle in the middle of the sheet
     const int v = g.triangles(face, 0), a = g.triangles(face, 1), b = g.triangles(face, 2);
     const Eigen::RowVector3d mid = 0.5 * (g.points.row(a) + g.points.row(b));

@@ -21,6 +21,16 @@ void move(Mesh& m, const Eigen::Vector3d& axis, double angle, const Eigen::Vecto
     for (Eigen::Index i = 0; i < m.points.rows(); ++i) m.points.row(i) = (r * m.points.row(i).transpose() + shift).transpose();
 }
 
+// The faces of a sphere centred at the origin with all three vertices at z >= 0: a cap.
+std::vector<int> upper_half_faces(const Mesh& s) {
+    std::vector<int> cap;
+    for (Eigen::Index f = 0; f < s.triangles.rows(); ++f)
+        if (s.points(s.triangles(f, 0), 2) >= -1e-12 && s.points(s.triangles(f, 1), 2) >= -1e-12 &&
+            s.points(s.triangles(f, 2), 2) >= -1e-12)
+            cap.push_back(static_cast<int>(f));
+    return cap;
+}
+
 } // namespace
 
 TEST(Feature, WholeSphereGivesTwoOverRSquared) {
@@ -62,11 +72,7 @@ TEST(Feature, SphericalCapBumpUsesItsFootprintRadius) {
     // The upper half of a sphere: radii r, r, r/2 -> r; the frequency is the sphere's.
     const double r = 0.0563;  // the paper's dinosaur back-bone bump: s = 630
     const Mesh s = icosphere(4, r);
-    std::vector<int> cap;
-    for (Eigen::Index f = 0; f < s.triangles.rows(); ++f)
-        if (s.points(s.triangles(f, 0), 2) >= -1e-12 && s.points(s.triangles(f, 1), 2) >= -1e-12 &&
-            s.points(s.triangles(f, 2), 2) >= -1e-12)
-            cap.push_back(static_cast<int>(f));
+    const std::vector<int> cap = upper_half_faces(s);
     const FeatureEllipsoid e = measure_feature(s.points, s.triangles, cap);
     EXPECT_NEAR(e.radii[2], r / 2, 0.05 * r);
     EXPECT_NEAR(e.frequency(FeatureShape::Sphere), 630, 0.05 * 630);
@@ -122,11 +128,7 @@ TEST(Feature, GeoreferencedCoordinatesGiveTheSameFrequency) {
     // the feature's (~1e-3) to rounding noise.
     const double r = 0.05;
     const Mesh s = icosphere(4, r);
-    std::vector<int> cap;
-    for (Eigen::Index f = 0; f < s.triangles.rows(); ++f)
-        if (s.points(s.triangles(f, 0), 2) >= -1e-12 && s.points(s.triangles(f, 1), 2) >= -1e-12 &&
-            s.points(s.triangles(f, 2), 2) >= -1e-12)
-            cap.push_back(static_cast<int>(f));
+    const std::vector<int> cap = upper_half_faces(s);
     const FeatureEllipsoid local = measure_feature(s.points, s.triangles, cap);
     Mesh far = s;
     far.points.rowwise() += Eigen::RowVector3d(5e5, 4e6, 1e2);
