@@ -1,4 +1,5 @@
 #include "run_filter.h"
+#include "run_region.h"
 
 #include <cmath>
 #include <sstream>
@@ -146,7 +147,19 @@ RunOutput run_filter(const FilterSpec& spec, const ParameterValues& values, cons
     options.max_iterations = static_cast<int>(cap);
     options.progress = input.progress;
     options.fix_boundary = value_of(spec, values, param::fix_boundary) != 0;
-    out.points = apply_filter(input.points, input.triangles, out.transfer, options, &out.report);
+    const int region = spec.parameter(param::region) ? choice_of(spec, values, param::region) : 0;
+    if (region == 0) {
+        out.points = apply_filter(input.points, input.triangles, out.transfer, options, &out.report);
+    } else {
+        double s_feature = out.s1_used;
+        if (!(s_feature > 0) && spec.kind == FilterKind::PoleZero) {  // the corner the feature would set
+            const int corner = choice_of(spec, values, param::feature_corner);
+            s_feature = value_of(spec, values, (corner < param::max_pole_zero ? param::zero_prefix : param::pole_prefix) +
+                                                   std::to_string(corner % param::max_pole_zero + 1));
+        }
+        out.points = filter_region(region, value_of(spec, values, param::blend_width), input, out.transfer, options,
+                                   s_feature, shape_of(spec, values), out.report, out.log);
+    }
     for (const auto& w : out.report.warnings) out.log.push_back("warning: " + w);
     if (out.report.fixed_vertices > 0)
         out.log.push_back(std::to_string(out.report.fixed_vertices) + " boundary vertices kept in place (fixBoundary)");

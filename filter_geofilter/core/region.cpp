@@ -234,9 +234,11 @@ Points apply_filter_weighted(const Points& points, const Triangles& triangles, c
             const std::vector<bool> on_boundary = options.fix_boundary
                                                       ? boundary_vertices(mesh.triangles, mesh.points.rows())
                                                       : std::vector<bool>(fixed.size(), false);
-            for (size_t c = 0; c < fixed.size(); ++c) fixed[c] = fixed[c] || on_boundary[c];
-            report.fixed_vertices = static_cast<int>(std::count(fixed.begin(), fixed.end(), true));
-            report.active_vertices = static_cast<int>(fixed.size()) - report.fixed_vertices;
+            for (size_t c = 0; c < fixed.size(); ++c) {
+                if (!fixed[c] && on_boundary[c]) ++report.fixed_vertices;  // as apply_filter counts: the rim only
+                fixed[c] = fixed[c] || on_boundary[c];
+            }
+            report.active_vertices = static_cast<int>(std::count(fixed.begin(), fixed.end(), false));
             filtered = sub_points;
             moved.assign(sub_vertex.size(), false);
             if (report.active_vertices == 0) {

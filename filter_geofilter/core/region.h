@@ -37,8 +37,9 @@ struct RegionReport {
 // everywhere the result is apply_filter's, bit for bit. Open boundaries inside D follow
 // options.fix_boundary as in apply_filter (free by default). A connected part of D with no
 // vertex outside D is filtered as apply_filter would filter it alone (about its own centroid).
-// `report` receives the solver's report (active_vertices = |D|, fixed_vertices = the ring and
-// any fixed boundary); `region_report` what the region turned into.
+// `report` receives the solver's report (active_vertices = the vertices solved for,
+// fixed_vertices = open-boundary vertices of D kept by fix_boundary); `region_report` what the
+// region turned into.
 Points apply_filter_weighted(const Points& points, const Triangles& triangles, const TransferFunction& g,
                              const std::vector<double>& weight, const FilterOptions& options = {},
                              FilterReport* report = nullptr, RegionReport* region_report = nullptr);

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <functional>
 #include <map>
 
 using namespace geofilter;
@@ -305,4 +306,87 @@ TEST(Region, RefusesBadWeightsAndFaces) {
     EXPECT_THROW(apply_filter_weighted(m.points, m.triangles, exaggerate(), w), Error);
     EXPECT_THROW(region_weight(m.points, m.triangles, {int(m.triangles.rows())}, 0.1), Error);
     EXPECT_THROW(region_weight(m.points, m.triangles, {0}, std::nan("")), Error);
+}
+
+// Through run_filter, as every adapter calls it: the table's region and blendWidth.
+#include "filter_table.h"
+#include "run_filter.h"
+
+namespace {
+
+RunOutput run_with(const std::string& filter, const ParameterValues& changes, const Mesh& m, const std::vector<int>& selected,
+                   const std::vector<double>* quality = nullptr) {
+    const FilterSpec& spec = *find_filter(filter);
+    ParameterValues v = default_values(spec, !selected.empty());
+    for (const auto& [name, value] : changes) v[name] = value;
+    return run_filter(spec, v, RunInput{m.points, m.triangles, selected, {}, quality});
+}
+
+std::string refusal(const std::function<void()>& f) {
+    try {
+        f();
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+} // namespace
+
+TEST(RegionRun, EveryFilterHasRegionAndBlendWidth) {
+    for (const auto& f : filter_table()) {
+        if (f.kind == FilterKind::Measure) continue;
+        ASSERT_NE(f.parameter(param::region), nullptr) << f.name;
+        EXPECT_EQ(f.parameter(param::region)->default_value, 0) << "whole mesh stays the default";
+        ASSERT_NE(f.parameter(param::blend_width), nullptr) << f.name;
+        EXPECT_EQ(f.parameter(param::blend_width)->default_value, 0) << "0 = auto";
+    }
+}
+
+TEST(RegionRun, SelectedRegionWithAutoBandIsTheCoreWithTheFeatureRadius) {
+    const Mesh m = bumpy_sphere();
+    const std::vector<int> faces = faces_within(m, {0, 0, 1.1}, 0.3);
+    // Frequency and region from the same selection.
+    const RunOutput same = run_with("exaggerate", {{param::region, 1}}, m, faces);
+    ASSERT_TRUE(same.feature);
+    const double s1 = same.s1_used, width = std::sqrt(2 / s1);
+    const Points expected = apply_filter_weighted(m.points, m.triangles, same.transfer,
+                                                  region_weight(m.points, m.triangles, faces, width));
+    EXPECT_TRUE(same.points == expected);
+    bool logged = false;
+    for (const auto& line : same.log) logged = logged || line.find("auto: the feature radius") != std::string::npos;
+    EXPECT_TRUE(logged);
+    // Typed frequency, selected region, given band.
+    const RunOutput typed =
+        run_with("exaggerate", {{param::region, 1}, {param::use_selection, 0}, {param::s1, 50}, {param::blend_width, 0.2}}, m, faces);
+    EXPECT_EQ(typed.s1_used, 50);
+    const Points typed_expected = apply_filter_weighted(m.points, m.triangles, typed.transfer,
+                                                        region_weight(m.points, m.triangles, faces, 0.2));
+    EXPECT_TRUE(typed.points == typed_expected);
+}
+
+TEST(RegionRun, QualityWeightOneIsWholeMeshZeroNothingAndBadQualityIsRefusedOrClamped) {
+    Mesh m = torus(30, 20, 1.0, 0.35);
+    perturb_radially(m, 0.02, 5);
+    const auto n = size_t(m.points.rows());
+    const RunOutput whole = run_with("exaggerate", {{param::s1, 40}}, m, {});
+    const std::vector<double> ones(n, 1.0), zeros(n, 0.0);
+    EXPECT_TRUE(run_with("exaggerate", {{param::s1, 40}, {param::region, 2}}, m, {}, &ones).points == whole.points);
+    EXPECT_TRUE(run_with("exaggerate", {{param::s1, 40}, {param::region, 2}}, m, {}, &zeros).points == m.points);
+    std::vector<double> big(n, 1.7);
+    const RunOutput clamped = run_with("exaggerate", {{param::s1, 40}, {param::region, 2}}, m, {}, &big);
+    EXPECT_TRUE(clamped.points == whole.points) << "1.7 is clamped to 1";
+    bool logged = false;
+    for (const auto& line : clamped.log) logged = logged || line.find("clamped") != std::string::npos;
+    EXPECT_TRUE(logged);
+    std::vector<double> nan = ones;
+    nan[7] = std::nan("");
+    EXPECT_NE(refusal([&] { run_with("exaggerate", {{param::region, 2}}, m, {}, &nan); }).find("NaN"), std::string::npos);
+    EXPECT_NE(refusal([&] { run_with("exaggerate", {{param::region, 2}}, m, {}); }).find("no"), std::string::npos);
+    EXPECT_NE(refusal([&] { run_with("exaggerate", {{param::region, 1}, {param::use_selection, 0}}, m, {}); })
+                  .find("no faces are selected"),
+              std::string::npos);
+    EXPECT_NE(refusal([&] { run_with("polezero", {{param::region, 1}, {param::blend_width, -1}}, m, {0, 1}); })
+                  .find("blendWidth"),
+              std::string::npos);
 }
