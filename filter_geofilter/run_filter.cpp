@@ -1,5 +1,6 @@
 #include "run_filter.h"
 #include "run_region.h"
+#include "core/ellipsoid_view.h"
 
 #include <cmath>
 #include <sstream>
@@ -126,7 +127,18 @@ RunOutput run_filter(const FilterSpec& spec, const ParameterValues& values, cons
         const FeatureEllipsoid& e = *out.feature;
         out.log.push_back("feature frequency: sphere-like s = 2/r^2 = " + num(e.frequency(FeatureShape::Sphere)) +
                           ", cylinder-like s = 1/r^2 = " + num(e.frequency(FeatureShape::Cylinder)));
-        out.ellipsoid_mesh = ellipsoid_mesh(e);
+        // Shown enclosing the selection, in colour (the adapters), so it is seen around the feature.
+        FeatureEllipsoid shown = e;
+        const double scale = enclosing_scale(e, input.points, input.triangles, input.selected_faces);
+        shown.radii *= scale;
+        out.ellipsoid_mesh = ellipsoid_mesh(shown);
+        std::ostringstream axes;
+        axes.precision(5);
+        for (int k = 0; k < 3; ++k)
+            axes << (k ? "; " : "") << "(" << e.axes(0, k) << ", " << e.axes(1, k) << ", " << e.axes(2, k) << ") radius "
+                 << e.radii[k];
+        out.log.push_back("ellipsoid axes (unit directions, measured radii): " + axes.str() +
+                          "; the layer shows it scaled by " + num(scale) + " so that it encloses the selection");
         return out;
     }
 

@@ -206,6 +206,10 @@ inline void storeFiltered(CMeshO &cm, const CoreMesh &mesh, const Points &filter
 	}
 }
 
+// The ellipsoid layer's per-vertex colour: an orange that stands out against MeshLab's grey
+// meshes. The adapters also mark the layer as having vertex colour, or MeshLab ignores it.
+inline vcg::Color4b ellipsoidColour() { return vcg::Color4b(255, 128, 0, 255); }
+
 // Fills an empty mesh with the fitted ellipsoid (the caller creates the layer: that differs
 // between the APIs).
 inline void fillEllipsoid(CMeshO &cm, const Mesh &e)
@@ -215,6 +219,7 @@ inline void fillEllipsoid(CMeshO &cm, const Mesh &e)
 	for (Eigen::Index i = 0; i < e.points.rows(); ++i, ++vi) {
 		vi->P() = CMeshO::CoordType(CMeshO::ScalarType(e.points(i, 0)), CMeshO::ScalarType(e.points(i, 1)),
 		                            CMeshO::ScalarType(e.points(i, 2)));
+		vi->C() = ellipsoidColour();
 		v.push_back(&*vi);
 	}
 	auto fi = vcg::tri::Allocator<CMeshO>::AddFaces(cm, size_t(e.triangles.rows()));

@@ -166,7 +166,7 @@ std::string fmt(double v, int precision = 2) {
 // includes computing its weight.
 int region_rows(const std::vector<std::function<NamedMesh()>>& makers, const std::string& out_dir) {
     std::ostringstream table;
-    table << "| mesh | vertices | filter | region vertices (selected) | solved on (D + ring) | whole mesh (s) | region (s) |"
+    table << "| mesh | vertices | filter | D: w > 0 (selected) | solved on (D + ring) | whole mesh (s) | region (s) |"
              " region / whole | outside D unchanged |\n|---|---:|---|---:|---:|---:|---:|---:|---|\n";
     std::cout << table.str() << std::flush;
     for (const auto& make : makers) {
