@@ -127,10 +127,8 @@ RunOutput run_filter(const FilterSpec& spec, const ParameterValues& values, cons
         const FeatureEllipsoid& e = *out.feature;
         out.log.push_back("feature frequency: sphere-like s = 2/r^2 = " + num(e.frequency(FeatureShape::Sphere)) +
                           ", cylinder-like s = 1/r^2 = " + num(e.frequency(FeatureShape::Cylinder)));
-        // Shown enclosing the selection, in colour (the adapters), so it is seen around the feature.
-        FeatureEllipsoid shown = e;
-        const double scale = enclosing_scale(e, input.points, input.triangles, input.selected_faces);
-        shown.radii *= scale;
+        // Shown a little off the surface and never flat, in colour (the adapters).
+        const FeatureEllipsoid shown = shown_ellipsoid(e);
         out.ellipsoid_mesh = ellipsoid_mesh(shown);
         std::ostringstream axes;
         axes.precision(5);
@@ -138,7 +136,8 @@ RunOutput run_filter(const FilterSpec& spec, const ParameterValues& values, cons
             axes << (k ? "; " : "") << "(" << e.axes(0, k) << ", " << e.axes(1, k) << ", " << e.axes(2, k) << ") radius "
                  << e.radii[k];
         out.log.push_back("ellipsoid axes (unit directions, measured radii): " + axes.str() +
-                          "; the layer shows it scaled by " + num(scale) + " so that it encloses the selection");
+                          "; the layer draws radii " + num(shown.radii[0]) + ", " + num(shown.radii[1]) + ", " +
+                          num(shown.radii[2]) + " (2% larger, at least 5% of the largest) to stand off the surface");
         return out;
     }
 
