@@ -9,6 +9,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <new>
 #include <numeric>
 #include <queue>
 #include <utility>
@@ -168,9 +169,28 @@ std::vector<double> region_weight(const Points& points, const Triangles& triangl
     return weight;
 }
 
+namespace {
+Points apply_filter_weighted_unguarded(const Points& points, const Triangles& triangles, const TransferFunction& g,
+                                       const std::vector<double>& weight, const FilterOptions& options,
+                                       FilterReport* report_out, RegionReport* region_out);
+} // namespace
+
 Points apply_filter_weighted(const Points& points, const Triangles& triangles, const TransferFunction& g,
                              const std::vector<double>& weight, const FilterOptions& options, FilterReport* report_out,
                              RegionReport* region_out) {
+    try {
+        return apply_filter_weighted_unguarded(points, triangles, g, weight, options, report_out, region_out);
+    } catch (const std::bad_alloc&) {
+        throw Error("out of memory while filtering a region of a mesh of " + std::to_string(points.rows()) +
+                    " vertices: select a smaller region, close other programs, or simplify the mesh first");
+    }
+}
+
+namespace {
+
+Points apply_filter_weighted_unguarded(const Points& points, const Triangles& triangles, const TransferFunction& g,
+                                       const std::vector<double>& weight, const FilterOptions& options,
+                                       FilterReport* report_out, RegionReport* region_out) {
     const auto t0 = std::chrono::steady_clock::now();
     const Eigen::Index n = points.rows();
     if (static_cast<Eigen::Index>(weight.size()) != n)
@@ -264,9 +284,12 @@ Points apply_filter_weighted(const Points& points, const Triangles& triangles, c
         }
     }
     report.seconds_total = seconds_since(t0);
+    detail::report_progress(options, 1.0, "done");
     if (report_out) *report_out = std::move(report);
     if (region_out) *region_out = region;
     return result;
 }
+
+} // namespace
 
 } // namespace geofilter
