@@ -29,6 +29,7 @@ struct RegionReport {
     int domain_vertices = 0;        // |D|: vertices with w > 0
     int ring_vertices = 0;          // vertices outside D held fixed because they share a face with D
     int free_components = 0;        // connected parts of D with no fixed vertex: filtered as a whole
+                                    // (-1: no ring at all, D handed to apply_filter as is)
     int submesh_vertices = 0;       // vertices assembled and solved on (D and its ring)
 };
 
