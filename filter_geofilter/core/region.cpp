@@ -201,6 +201,13 @@ Points apply_filter_weighted_unguarded(const Points& points, const Triangles& tr
                         ": weights must lie in [0, 1]");
     check_faces(triangles, n);
     check_options(g, options);
+    // As the whole-mesh filter does, even for vertices the region leaves alone: a result
+    // with such a vertex is no valid mesh either.
+    for (Eigen::Index v = 0; v < n; ++v)
+        if (!points.row(v).allFinite())
+            throw Error("vertex " + std::to_string(v) +
+                        " has a NaN or infinite coordinate: remove or repair it (e.g. MeshLab's Remove Unreferenced/Duplicate"
+                        " Vertices after deleting it)");
 
     FilterReport report;
     report.solver = options.solver;
@@ -282,6 +289,8 @@ Points apply_filter_weighted_unguarded(const Points& points, const Triangles& tr
             if (weight[v] == 1) result.row(v) = filtered.row(static_cast<Eigen::Index>(i));
             else result.row(v) = points.row(v) + weight[v] * (filtered.row(static_cast<Eigen::Index>(i)) - points.row(v));
         }
+        if (!result.allFinite())
+            throw Error("the filter produced non-finite coordinates: the transfer function amplifies this mesh too much");
     }
     report.seconds_total = seconds_since(t0);
     detail::report_progress(options, 1.0, "done");

@@ -304,6 +304,10 @@ TEST(Region, RefusesBadWeightsAndFaces) {
     EXPECT_THROW(apply_filter_weighted(m.points, m.triangles, exaggerate(), w), Error);
     w.pop_back();
     EXPECT_THROW(apply_filter_weighted(m.points, m.triangles, exaggerate(), w), Error);
+    Points far = m.points;
+    far(0, 1) = std::numeric_limits<double>::infinity();  // a vertex the region would not touch
+    EXPECT_THROW(apply_filter_weighted(far, m.triangles, exaggerate(), std::vector<double>(size_t(m.points.rows()), 0.0)),
+                 Error);
     EXPECT_THROW(region_weight(m.points, m.triangles, {int(m.triangles.rows())}, 0.1), Error);
     EXPECT_THROW(region_weight(m.points, m.triangles, {0}, std::nan("")), Error);
 }
