@@ -57,7 +57,9 @@ std::vector<ParameterSpec> second_order_parameters(const SecondOrderSpec& d) {
          {}},
         {param::feature_shape, ParameterType::Enum, 0, "featureShape",
          "How the selected feature's radius r becomes a frequency: sphere-like (a bump, a nose) s = 2/r^2,"
-         " cylinder-like (a leg, a finger) s = 1/r^2. r is the mean of the two most similar ellipsoid radii.",
+         " cylinder-like (a leg, a finger) s = 1/r^2. r blends the means of the two adjacent pairs of ellipsoid radii,"
+         " weighted by how round each pair is: the two wide radii for a bump, the two narrow ones for a tube, all"
+         " three for a sphere.",
          {"Sphere-like (s = 2/r^2)", "Cylinder-like (s = 1/r^2)"}},
         {param::fix_boundary, ParameterType::Bool, 0, "fixBoundary: keep open boundaries in place",
          "Keep the vertices of open boundaries (holes, cut edges) exactly where they are and filter the interior"
@@ -68,9 +70,10 @@ std::vector<ParameterSpec> second_order_parameters(const SecondOrderSpec& d) {
          "Factored: sparse Cholesky factorisations, exact and fast whatever s1. Jacobi-PCG: the paper's"
          " conjugate-gradient method, slow for small s1 (wide features); kept as a reference.",
          {"Factored (sparse Cholesky)", "Jacobi-PCG (paper)"}},
-        {param::tolerance, ParameterType::Float, 1e-10, "tolerance",
-         "Relative residual at which iterative solves stop. The result is accurate to about this fraction of the"
-         " mesh size.",
+        {param::tolerance, ParameterType::Float, 1e-7, "tolerance: accuracy of the result",
+         "The solver stops once its error bound guarantees that the filtered surface is within this fraction of"
+         " the bounding-box diagonal of the exact result (area-weighted RMS distance). The bound holds on any mesh;"
+         " the direct (factored) solves are exact up to rounding.",
          {}},
         {param::max_iterations, ParameterType::Int, 100000, "maxIterations",
          "Cap on conjugate-gradient iterations per solve; reaching it is reported as an error, the mesh is left as"
@@ -134,7 +137,7 @@ FilterSpec pole_zero() {
 
 std::vector<FilterSpec> make_table() {
     std::vector<FilterSpec> t;
-    // Defaults are the paper's figures where those are stable (PAPER-NOTES section 9); the
+    // Defaults are the paper's figures where those are stable (docs/paper-notes.md §9); the
     // highpass family's printed example is not, so its default is a stable member of it.
     t.push_back(second_order("Lowpass", "apply_geofilter_lowpass", "lowpass",
                              "Removes features smaller than the one at s1 and keeps larger ones (paper Fig. 12).",
@@ -160,7 +163,8 @@ std::vector<FilterSpec> make_table() {
                  FilterKind::Measure,
                  "Fits an ellipsoid to the selected faces (area-weighted covariance frame, bounding box in that frame;"
                  " paper section 6), adds it as a new layer and logs its radii and the feature's frequency: s = 2/r^2 if"
-                 " sphere-like, 1/r^2 if cylinder-like, r being the mean of the two most similar radii.",
+                 " sphere-like, 1/r^2 if cylinder-like, r blending the means of the adjacent pairs of radii by how round each"
+                 " pair is.",
                  {}});
     return t;
 }

@@ -37,11 +37,52 @@ std::string describe_feature(const FeatureEllipsoid& e) {
     os.precision(5);
     os << e.face_count << " selected faces, area " << e.area << "; ellipsoid radii " << e.radii[0] << ", " << e.radii[1]
        << ", " << e.radii[2] << "; centre (" << e.center[0] << ", " << e.center[1] << ", " << e.center[2]
-       << "); feature radius r = " << e.radius << " (mean of the two most similar radii)";
+       << "); axes (" << e.axes(0, 0) << ", " << e.axes(1, 0) << ", " << e.axes(2, 0) << "), (" << e.axes(0, 1) << ", "
+       << e.axes(1, 1) << ", " << e.axes(2, 1) << "), (" << e.axes(0, 2) << ", " << e.axes(1, 2) << ", " << e.axes(2, 2)
+       << "); feature radius r = " << e.radius << " (the radii pairs blended by roundness)";
     return os.str();
 }
 
 } // namespace
+
+double apply_feature_radius(const FilterSpec& spec, ParameterValues& values, double radius, const std::string& source,
+                            std::vector<std::string>& log) {
+    if (!(radius > 0) || !std::isfinite(radius))
+        throw Error(source + " must be a finite radius > 0 (got " + num(radius) + ")");
+    const bool cylinder = value_of(spec, values, param::feature_shape) == 1;
+    const double frequency = (cylinder ? 1.0 : 2.0) / (radius * radius);
+    const std::string how = std::string(cylinder ? "cylinder-like, s = 1/r^2" : "sphere-like, s = 2/r^2") +
+                            " with r = " + num(radius);
+    if (spec.kind == FilterKind::SecondOrder) {
+        const double s1 = value_of(spec, values, param::s1), s2 = value_of(spec, values, param::s2);
+        if (!(s1 > 0) || !std::isfinite(s2 / s1))
+            throw Error("s1 must be > 0 (got " + num(s1) + "): with " + source + " it sets the ratio s2/s1");
+        values[param::s1] = frequency;
+        values[param::s2] = frequency * (s2 / s1);
+        log.push_back("s1 = " + num(frequency) + " from " + source + " (" + how + "); s2 = " + num(frequency * (s2 / s1)) +
+                      " keeps s2/s1 = " + num(s2 / s1) + " (given s1 = " + num(s1) + ", s2 = " + num(s2) + ")");
+        return frequency;
+    }
+    if (spec.kind == FilterKind::PoleZero) {
+        // featureCorner indexes z1..z4 then p1..p4, as run_filter reads it.
+        std::vector<std::string> corners;
+        for (const auto& prefix : {param::zero_prefix, param::pole_prefix})
+            for (int i = 1; i <= param::max_pole_zero; ++i) corners.push_back(prefix + std::to_string(i));
+        const auto corner = size_t(value_of(spec, values, param::feature_corner));
+        if (corner >= corners.size()) throw Error("featureCorner must be an index from 0 to " + std::to_string(corners.size() - 1));
+        const std::string& corner_name = corners[corner];
+        const double given = value_of(spec, values, corner_name);
+        if (!(given > 0))
+            throw Error("featureCorner " + corner_name + " is not in use (0): give it a value, its ratio to the other"
+                        " corners is kept");
+        const double scale = frequency / given;
+        for (const auto& name : corners) values[name] = value_of(spec, values, name) * scale;
+        log.push_back("corner " + corner_name + " = " + num(frequency) + " from " + source + " (" + how +
+                      "); all corners scaled by " + num(scale));
+        return frequency;
+    }
+    throw Error(source + " does not apply to " + spec.cli_name);
+}
 
 ParameterValues default_values(const FilterSpec& spec, bool has_selection) {
     ParameterValues v;
@@ -63,8 +104,9 @@ TransferFunction design_from_values(const FilterSpec& spec, const ParameterValue
                 throw Error("s1 must be > 0 (got " + num(s.s1) + "): with useSelection it sets the ratio s2/s1");
             const double measured = feature->frequency(shape);
             const double ratio = s.s2 / s.s1;
-            log.push_back("s1 = " + num(measured) + " from the selection (" + shape_name + "); s2 = " + num(measured * ratio) +
-                          " keeps s2/s1 = " + num(ratio) + " (given s1 = " + num(s.s1) + ", s2 = " + num(s.s2) + ")");
+            log.push_back("s1 = " + num(measured) + " from " + std::to_string(feature->face_count) + " selected faces (" +
+                          shape_name + "), instead of the typed " + num(s.s1) + "; s2 = " + num(measured * ratio) +
+                          " keeps the typed ratio s2/s1 = " + num(ratio) + " (turn useSelection off to use the typed values)");
             s.s1 = measured;
             s.s2 = measured * ratio;
         } else {
@@ -91,12 +133,13 @@ TransferFunction design_from_values(const FilterSpec& spec, const ParameterValue
             if (corners[corner] == 0)
                 throw Error("featureCorner names a corner frequency that is not in use (0): give it a value, its ratio to"
                             " the others is kept");
-            const double measured = feature->frequency(shape);
-            const double scale = measured / corners[corner];
+            const double measured = feature->frequency(shape), typed = corners[corner];
+            const double scale = measured / typed;
             for (double& c : corners) c *= scale;
             log.push_back("corner " + std::string(corner < param::max_pole_zero ? "z" : "p") +
-                          std::to_string(corner % param::max_pole_zero + 1) + " = " + num(measured) + " from the selection (" +
-                          shape_name + "); all corners scaled by " + num(scale));
+                          std::to_string(corner % param::max_pole_zero + 1) + " = " + num(measured) + " from " +
+                          std::to_string(feature->face_count) + " selected faces (" + shape_name + "), instead of the typed " +
+                          num(corners[corner]) + "; all corners scaled by " + num(scale));
             if (s1_used) *s1_used = measured;
         }
         for (int i = 0; i < param::max_pole_zero; ++i) {
@@ -174,17 +217,13 @@ RunOutput run_filter(const FilterSpec& spec, const ParameterValues& values, cons
     for (const auto& w : out.report.warnings) out.log.push_back("warning: " + w);
     if (out.report.fixed_vertices > 0)
         out.log.push_back(std::to_string(out.report.fixed_vertices) + " boundary vertices kept in place (fixBoundary)");
-    std::ostringstream os;
-    os.precision(3);
-    os << "solver " << solver_name(out.report.solver) << ": " << out.report.active_vertices << " vertices, "
-       << out.report.iterations << " CG iterations, relative residual " << out.report.relative_residual;
-    if (out.report.stopped_at_accuracy > 0)
-        os << " (stopped once the estimated error was below " << out.report.stopped_at_accuracy
-           << " of the bounding-box diagonal)";
-    os << "; time "
-       << out.report.seconds_total << " s (assembly " << out.report.seconds_assembly << ", factorisation "
-       << out.report.seconds_factorization << ", solve " << out.report.seconds_solve << ")";
-    out.log.push_back(os.str());
+    const FilterReport& r = out.report;
+    out.log.push_back("solver " + std::string(solver_name(r.solver)) + ": " + std::to_string(r.active_vertices) + " vertices in " +
+                      std::to_string(r.components) + " component(s), " + std::to_string(r.iterations) +
+                      " CG iterations, accurate to " + num(options.tolerance) +
+                      " of the bounding-box diagonal (error bound), relative residual " + num(r.relative_residual) +
+                      "; time " + num(r.seconds_total) + " s (assembly " + num(r.seconds_assembly) + ", factorisation " +
+                      num(r.seconds_factorization) + ", solve " + num(r.seconds_solve) + ")");
     return out;
 }
 

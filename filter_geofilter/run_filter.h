@@ -42,6 +42,14 @@ struct RunOutput {
 // useSelection, which should follow "has the mesh selected faces").
 ParameterValues default_values(const FilterSpec& spec, bool has_selection);
 
+// Sets the frequency of a feature of radius `radius` as useSelection does with a measured
+// one: s = 2/r^2 (sphere-like) or 1/r^2 (cylinder-like, by featureShape) becomes s1 with s2
+// keeping its ratio s2/s1, or becomes the featureCorner of a pole-zero filter with the other
+// corners keeping their ratios. `source` names where the radius came from in the log and
+// in errors (e.g. "--radius"). Returns that frequency. Throws Error.
+double apply_feature_radius(const FilterSpec& spec, ParameterValues& values, double radius, const std::string& source,
+                            std::vector<std::string>& log);
+
 // The transfer function for the given values, with the frequency taken from `feature`
 // when given. Throws Error naming the parameter at fault.
 TransferFunction design_from_values(const FilterSpec& spec, const ParameterValues& values,

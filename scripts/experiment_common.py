@@ -15,6 +15,7 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 TOP = os.path.dirname(HERE)
 sys.path.insert(0, os.path.join(TOP, "tests", "integration"))
+sys.path.insert(0, os.path.join(TOP, "tests", "support"))  # the references the harness imports
 sys.path.insert(0, HERE)
 import geofilter_harness as h  # noqa: E402
 from render_meshes import read_off  # noqa: E402,F401  (re-exported for the scripts)

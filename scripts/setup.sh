@@ -15,6 +15,7 @@ packages=(
     clang libclang-rt-14-dev              # libFuzzer (scripts/fuzz.sh)
     xvfb xauth                            # meshlabserver needs an X display
     python3-numpy python3-matplotlib      # integration tests, plots and renders
+    pybind11-dev python3-dev python3-pytest   # the Python module and its tests
     gnuplot-nox                           # G(s) and benchmark plots
     libcgal-demo                          # real meshes (data.tar.gz)
 )

@@ -20,12 +20,6 @@ std::string lower(std::string s) {
     return s;
 }
 
-std::string format_number(double v) {
-    std::ostringstream os;
-    os << v;
-    return os.str();
-}
-
 std::string preset_names() {
     std::string names;
     for (const auto& f : filter_table()) names += (names.empty() ? "" : ", ") + f.cli_name;

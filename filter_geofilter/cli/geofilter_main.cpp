@@ -30,12 +30,7 @@ extern "C" void on_interrupt(int) {
     std::signal(SIGINT, SIG_DFL);
 }
 
-std::string num(double v, int digits = 6) {
-    std::ostringstream os;
-    os.precision(digits);
-    os << v;
-    return os.str();
-}
+std::string num(double v, int digits = 6) { return format_number(v, digits); }
 
 std::string lower_extension(const std::string& path) {
     const auto dot = path.find_last_of('.');
@@ -113,7 +108,7 @@ int run(const CliOptions& o) {
     ParameterValues values = o.values;
     Feature feature;
     if (o.radius) {
-        apply_feature_radius(spec, values, *o.radius, log);
+        apply_feature_radius(spec, values, *o.radius, "--radius", log);
         feature = {true, *o.radius};
     }
     if (!measure) {
@@ -169,9 +164,10 @@ int run(const CliOptions& o) {
         }
         // The summary is the measurement asked for: printed even with --quiet.
         const FeatureEllipsoid& e = *out.feature;
-        summary << "geofilter: measure: r = " << num(e.radius) << ": sphere-like s = 2/r^2 = "
-                << num(e.frequency(FeatureShape::Sphere)) << ", cylinder-like s = 1/r^2 = "
-                << num(e.frequency(FeatureShape::Cylinder)) << " (" << e.face_count << " faces)";
+        // 10 digits: the measurement is the result here, and a script may compare it.
+        summary << "geofilter: measure: r = " << num(e.radius, 10) << ": sphere-like s = 2/r^2 = "
+                << num(e.frequency(FeatureShape::Sphere), 10) << ", cylinder-like s = 1/r^2 = "
+                << num(e.frequency(FeatureShape::Cylinder), 10) << " (" << e.face_count << " faces)";
         if (!o.output.empty()) summary << "; ellipsoid written to " << o.output;
         std::cout << summary.str() << std::endl;
         return 0;

@@ -1,9 +1,11 @@
 #include "boundary.h"
+#include "components.h"
 #include "mesh_prep.h"
 #include "solvers.h"
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <new>
@@ -52,6 +54,10 @@ Eigen::MatrixXd apply_polynomial(const SparseMatrix& kt, const std::vector<doubl
     return acc;
 }
 
+double allowed_error(const FilterProblem& problem) {
+    return problem.options.tolerance * problem.size * std::sqrt(problem.laplacian.mass.sum());
+}
+
 void report_progress(const FilterOptions& options, double fraction, const std::string& stage) {
     if (options.progress && !options.progress(fraction, stage)) throw Error("cancelled by the user while " + stage);
 }
@@ -73,12 +79,11 @@ Points apply_filter_unguarded(const Points& points, const Triangles& triangles, 
                               const FilterOptions& options, FilterReport* report_out) {
     const auto t0 = std::chrono::steady_clock::now();
     if (!(options.tolerance > 0 && options.tolerance < 1))
-        throw Error("the solver tolerance must lie in (0, 1) (got " + std::to_string(options.tolerance) + ")");
+        throw Error("the solver tolerance must lie in (0, 1) (got " + format_number(options.tolerance) + ")");
     if (options.max_iterations < 1) throw Error("the iteration cap must be at least 1");
-    if (!(options.accuracy > 0)) throw Error("the accuracy must be > 0");
     for (const auto& p : g.poles)
         if (p.imag() == 0 && p.real() >= 0)
-            throw Error("unstable filter: a pole lies at s = " + std::to_string(p.real()) + " >= 0");
+            throw Error("unstable filter: a pole lies at s = " + format_number(p.real()) + " >= 0");
 
     const double budget = options.memory_budget_bytes > 0 ? options.memory_budget_bytes : available_memory_bytes();
     if (budget > 0 && estimated_filter_bytes(points.rows()) > budget)
@@ -94,10 +99,23 @@ Points apply_filter_unguarded(const Points& points, const Triangles& triangles, 
 
     detail::report_progress(options, 0.0, "assembling the Laplacian");
     const Laplacian laplacian = cotan_laplacian(mesh.points, mesh.triangles);
-    // Centre on the area-weighted centroid: translation invariance, and no cancellation for
-    // meshes far from the origin.
-    const Eigen::RowVector3d centroid = (laplacian.mass.transpose() * mesh.points) / laplacian.mass.sum();
-    const Eigen::MatrixXd centred = mesh.points.rowwise() - centroid;
+    // Each connected component is centred on its own area-weighted centroid. The constant
+    // functions of a component are its eigenmodes at s = 0, so a filter scales the component
+    // about that point: centring on one global centroid would let G0 != 1 pull the components
+    // together. Centring also keeps the result independent of where the origin is, and free
+    // of cancellation on meshes far from it.
+    const std::vector<int> component = connected_components(mesh.triangles, mesh.points.rows());
+    const int components = component_count(component);
+    Eigen::MatrixXd centroids = Eigen::MatrixXd::Zero(components, 3);
+    Eigen::VectorXd component_area = Eigen::VectorXd::Zero(components);
+    for (Eigen::Index i = 0; i < mesh.points.rows(); ++i) {
+        centroids.row(component[i]) += laplacian.mass[i] * mesh.points.row(i);
+        component_area[component[i]] += laplacian.mass[i];
+    }
+    centroids.array().colwise() /= component_area.array();
+    Eigen::MatrixXd centred = mesh.points;
+    for (Eigen::Index i = 0; i < mesh.points.rows(); ++i) centred.row(i) -= centroids.row(component[i]);
+    report.components = components;
     report.seconds_assembly = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
     const double size = (mesh.points.colwise().maxCoeff() - mesh.points.colwise().minCoeff()).norm();
@@ -129,7 +147,7 @@ Points apply_filter_unguarded(const Points& points, const Triangles& triangles, 
         for (size_t i = 0, k = 0; i < interior.size(); ++i)
             if (interior[i]) filtered.row(i) = harmonic.row(i) + detail_filtered.row(static_cast<Eigen::Index>(k++));
     }
-    filtered.rowwise() += centroid;
+    for (Eigen::Index i = 0; i < filtered.rows(); ++i) filtered.row(i) += centroids.row(component[i]);
     if (!filtered.allFinite())
         throw Error("the filter produced non-finite coordinates: the mesh is too degenerate for this filter");
 

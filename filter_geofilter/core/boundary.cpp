@@ -1,4 +1,5 @@
 #include "boundary.h"
+#include "components.h"
 
 #include <Eigen/CholmodSupport>
 
@@ -55,30 +56,37 @@ Laplacian restrict_laplacian(const Laplacian& laplacian, const std::vector<bool>
 
 Eigen::MatrixXd harmonic_extension(const Laplacian& laplacian, const std::vector<bool>& on_boundary,
                                    const Eigen::MatrixXd& points) {
-    std::vector<bool> interior(on_boundary.size());
-    for (size_t i = 0; i < interior.size(); ++i) interior[i] = !on_boundary[i];
-    const std::vector<int> index = compact_index(interior);
-    Laplacian inner = restrict_laplacian(laplacian, interior);
+    // Only components that touch the boundary have a harmonic extension; a closed component
+    // gets h = 0. Leaving closed components out of the solve (instead of regularising K_II
+    // with a shift) keeps h exactly harmonic: a shift scaled by the stiffest vertex becomes
+    // large on a mesh with one sliver and turns h into a screened extension.
+    const std::vector<int> component = connected_components(laplacian.stiffness);
+    std::vector<bool> bounded(static_cast<size_t>(component_count(component)), false);
+    for (size_t i = 0; i < on_boundary.size(); ++i)
+        if (on_boundary[i]) bounded[component[i]] = true;
+    std::vector<bool> unknown(on_boundary.size());
+    for (size_t i = 0; i < unknown.size(); ++i) unknown[i] = !on_boundary[i] && bounded[component[i]];
+    const std::vector<int> index = compact_index(unknown);
+    const Laplacian inner = restrict_laplacian(laplacian, unknown);
+
+    Eigen::MatrixXd h = points;
+    for (size_t i = 0; i < unknown.size(); ++i)
+        if (!on_boundary[i] && !unknown[i]) h.row(static_cast<Eigen::Index>(i)).setZero();
+    if (inner.mass.size() == 0) return h;
 
     // Right-hand side -K_IB p_B.
     Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(inner.mass.size(), 3);
     for (Eigen::Index col = 0; col < laplacian.stiffness.outerSize(); ++col) {
         if (!on_boundary[col]) continue;
         for (SparseMatrix::InnerIterator it(laplacian.stiffness, col); it; ++it)
-            if (interior[it.row()]) rhs.row(index[it.row()]) -= it.value() * points.row(col);
+            if (unknown[it.row()]) rhs.row(index[it.row()]) -= it.value() * points.row(col);
     }
-    // A component with no boundary makes K_II singular (constants); a shift far below any
-    // of its eigenvalues keeps the factorisation defined and leaves h = 0 there (zero rhs).
-    const double shift = 1e-12 * inner.stiffness.diagonal().cwiseQuotient(inner.mass).maxCoeff();
-    SparseMatrix a = inner.stiffness;
-    a.diagonal() += shift * inner.mass;
-    Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> llt(a);
-    if (llt.info() != Eigen::Success) throw Error("the fixed-boundary system could not be factorised");
+    Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> llt(inner.stiffness);
+    if (llt.info() != Eigen::Success)
+        throw Error("the fixed-boundary system could not be factorised: the mesh has inverted or degenerate faces");
     const Eigen::MatrixXd h_inner = llt.solve(rhs);
-
-    Eigen::MatrixXd h = points;
-    for (size_t i = 0; i < interior.size(); ++i)
-        if (interior[i]) h.row(static_cast<Eigen::Index>(i)) = h_inner.row(index[i]);
+    for (size_t i = 0; i < unknown.size(); ++i)
+        if (unknown[i]) h.row(static_cast<Eigen::Index>(i)) = h_inner.row(index[i]);
     return h;
 }
 

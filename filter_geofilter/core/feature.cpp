@@ -6,11 +6,29 @@
 
 namespace geofilter {
 
+double feature_radius(const Eigen::Vector3d& radii) {
+    const double r1 = radii[0], r2 = radii[1], r3 = radii[2];
+    if (!(r2 > 0)) return 0;
+    // How far each adjacent pair is from round, on a log scale: 0 for equal radii.
+    const double wide_gap = std::log(r1 / r2), narrow_gap = r3 > 0 ? std::log(r2 / r3) : INFINITY;
+    // Weight of the wide pair: 1 when the wide pair is round and the narrow one is not (a cap),
+    // 0 in the opposite case (a tube), 1/2 when both gaps are equal. Where both gaps vanish
+    // (a sphere) every pair has the same mean, so r is continuous there too.
+    double wide_weight = 0.5;
+    if (std::isinf(narrow_gap)) wide_weight = 1;
+    else if (wide_gap + narrow_gap > 0) wide_weight = narrow_gap / (wide_gap + narrow_gap);
+    return wide_weight * 0.5 * (r1 + r2) + (1 - wide_weight) * 0.5 * (r2 + r3);
+}
+
 FeatureEllipsoid measure_feature(const Points& points, const Triangles& triangles, const std::vector<int>& selected_faces) {
     if (selected_faces.empty())
         throw Error("no faces are selected: select the feature (a bump, a nose, an ear) before measuring it,"
                     " or turn off useSelection and give s1 directly");
 
+    // Moments about a point of the selection, not the origin: on a georeferenced scan
+    // (coordinates ~1e6) raw second moments of a 5 cm feature would cancel to rounding noise.
+    Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+    bool have_origin = false;
     Eigen::Vector3d first_moment = Eigen::Vector3d::Zero();
     Eigen::Matrix3d second_moment = Eigen::Matrix3d::Zero();
     double area = 0;
@@ -20,7 +38,11 @@ FeatureEllipsoid measure_feature(const Points& points, const Triangles& triangle
         for (int k = 0; k < 3; ++k) {
             const int i = triangles(f, k);
             if (i < 0 || i >= points.rows()) throw Error("face " + std::to_string(f) + " refers to a missing vertex");
-            v[k] = points.row(i).transpose();
+            if (!have_origin) {
+                origin = points.row(i).transpose();
+                have_origin = true;
+            }
+            v[k] = points.row(i).transpose() - origin;
         }
         const double a = 0.5 * (v[1] - v[0]).cross(v[2] - v[0]).norm();
         if (!std::isfinite(a)) throw Error("a selected face has non-finite coordinates");
@@ -34,8 +56,8 @@ FeatureEllipsoid measure_feature(const Points& points, const Triangles& triangle
     if (!(area > 0))
         throw Error("the selected faces have zero total area: the feature size is undefined; select a larger region");
 
-    const Eigen::Vector3d mean = first_moment / area;
-    const Eigen::Matrix3d covariance = second_moment / area - mean * mean.transpose();
+    const Eigen::Vector3d local_mean = first_moment / area;
+    const Eigen::Matrix3d covariance = second_moment / area - local_mean * local_mean.transpose();
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(covariance);
     // Eigen sorts ascending; we want the largest spread first.
     Eigen::Matrix3d axes;
@@ -45,14 +67,15 @@ FeatureEllipsoid measure_feature(const Points& points, const Triangles& triangle
     Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = Eigen::Vector3d::Constant(-INFINITY);
     for (int f : selected_faces)
         for (int k = 0; k < 3; ++k) {
-            const Eigen::Vector3d local = axes.transpose() * (points.row(triangles(f, k)).transpose() - mean);
+            const Eigen::Vector3d local =
+                axes.transpose() * ((points.row(triangles(f, k)).transpose() - origin) - local_mean);
             lo = lo.cwiseMin(local);
             hi = hi.cwiseMax(local);
         }
 
     FeatureEllipsoid e;
     e.axes = axes;
-    e.center = mean + axes * (0.5 * (lo + hi));
+    e.center = origin + (local_mean + axes * (0.5 * (lo + hi)));
     e.radii = 0.5 * (hi - lo);
     e.area = area;
     e.face_count = static_cast<int>(selected_faces.size());
@@ -63,9 +86,7 @@ FeatureEllipsoid measure_feature(const Points& points, const Triangles& triangle
                 std::swap(e.radii[j], e.radii[j + 1]);
                 e.axes.col(j).swap(e.axes.col(j + 1));
             }
-    const double ratio_wide = e.radii[1] > 0 ? e.radii[0] / e.radii[1] : INFINITY;
-    const double ratio_narrow = e.radii[2] > 0 ? e.radii[1] / e.radii[2] : INFINITY;
-    e.radius = (ratio_wide <= ratio_narrow) ? 0.5 * (e.radii[0] + e.radii[1]) : 0.5 * (e.radii[1] + e.radii[2]);
+    e.radius = feature_radius(e.radii);
     if (!(e.radius > 0)) throw Error("the selected faces are degenerate (all on one line): no feature radius");
     return e;
 }

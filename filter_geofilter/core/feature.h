@@ -28,13 +28,18 @@ struct FeatureEllipsoid {
 // its eigenvectors as the frame, the bounding box of the selected faces' vertices in that
 // frame, and radii = the box's half-extents.
 //
-// The feature radius r is the mean of the two half-extents that are closest to each other
-// (smallest ratio). A round feature has a round cross-section, and that pair is it:
-//   - a whole sphere: all three equal r;
+// The feature radius r (feature_radius) blends the means of the two adjacent pairs of
+// radii, weighted by how round each pair is. A round feature has a round cross-section:
+//   - a whole sphere: all three radii equal r;
 //   - a bump or cap: the two wide extents (the third is its height);
-//   - a tube around a cylinder (leg, finger): the two narrow extents (the third is its length);
-//   - a short ring of a cylinder: the two wide extents.
+//   - a tube around a cylinder (leg, finger): the two narrow extents (the third is its length).
+// In between, r moves continuously with the radii (no switch from one pair to the other).
 // Refuses an empty selection, a selection of zero area and out-of-range face indices.
 FeatureEllipsoid measure_feature(const Points& points, const Triangles& triangles, const std::vector<int>& selected_faces);
+
+// With radii r1 >= r2 >= r3 >= 0: w (r1 + r2)/2 + (1 - w)(r2 + r3)/2, where
+// w = ln(r2/r3) / (ln(r1/r2) + ln(r2/r3)) (1/2 when both logarithms vanish, 1 when r3 = 0).
+// Continuous in the radii; equals r on a sphere (r, r, r), a cap (r, r, h) and a tube (L, r, r).
+double feature_radius(const Eigen::Vector3d& radii);
 
 } // namespace geofilter

@@ -30,11 +30,11 @@ using ProgressCallback = std::function<bool(double fraction, const std::string& 
 
 struct FilterOptions {
     Solver solver = Solver::Factored;
-    double tolerance = 1e-10;      // relative residual of every iterative solve
-    // The factored solver also stops once its estimated remaining error is below this
-    // fraction of the bounding-box diagonal at every vertex (its CG converges at a rate
-    // known from the poles, so the last update bounds the error).
-    double accuracy = 1e-7;
+    // Accuracy of the result: the solvers stop once their error bound guarantees that the
+    // area-weighted RMS distance between the computed and the exact filtered surface is below
+    // this fraction of the bounding-box diagonal. The bounds follow from the filter's poles
+    // (lower bounds on the solved operators' eigenvalues), so they hold on any mesh.
+    double tolerance = 1e-7;
     // Keep vertices on open boundaries where they are. The interior is then filtered as
     // p' = h + G(L_D) (p - h): h is the harmonic extension of the boundary, L_D the Laplacian
     // with the boundary fixed (Dirichlet). Off by default: the paper's filter, whose free
@@ -53,17 +53,16 @@ struct FilterReport {
     int active_vertices = 0;
     int iterations = 0;            // CG iterations, summed over the solves that iterate
     double relative_residual = 0;  // worst relative residual of eq. 9 / the factor solves
-    // Set when the factored solver stopped on its error estimate (FilterOptions::accuracy)
-    // before the residual reached the tolerance.
-    double stopped_at_accuracy = 0;
     double seconds_assembly = 0, seconds_factorization = 0, seconds_solve = 0, seconds_total = 0;
     int fixed_vertices = 0;        // boundary vertices kept in place (fix_boundary)
+    int components = 0;            // connected components, each filtered about its own centroid
     std::vector<std::string> warnings;  // repairs made to the input, in plain words
 };
 
 // Filters every vertex that belongs to a usable face; other vertices keep their position.
-// The filter acts about the mesh's area-weighted centroid, so its result does not depend on
-// where the origin is (G(0) = G0 scales the constant mode). Throws Error on bad input, an
+// Each connected component is filtered about its own area-weighted centroid, so the result
+// does not depend on where the origin is, G(0) = G0 scales each component about its centroid,
+// and components never pull on each other. Throws Error on bad input, an
 // unstable transfer function, non-convergence or cancellation; never returns a partial result.
 Points apply_filter(const Points& points, const Triangles& triangles, const TransferFunction& g,
                     const FilterOptions& options = {}, FilterReport* report = nullptr);

@@ -1,5 +1,5 @@
 // Cotangent stiffness and lumped mass of a triangle mesh (paper eq. 1-2, with the
-// factor 1/2 of the linear FEM stiffness: see PAPER-NOTES section 1).
+// factor 1/2 of the linear FEM stiffness: see docs/paper-notes.md §1).
 #pragma once
 
 #include "types.h"

@@ -9,26 +9,27 @@
 namespace geofilter {
 
 using BlockOperator = std::function<void(const Eigen::MatrixXd& in, Eigen::MatrixXd& out)>;
-// Called every few iterations with the worst relative residual; return false to cancel.
-using IterationObserver = std::function<bool(int iteration, double relative_residual)>;
+// Called every few iterations with the current error bound; return false to cancel.
+using IterationObserver = std::function<bool(int iteration, double error_bound)>;
+
+// A guaranteed bound on the error |x - A^-1 b| (in whatever norm and units the caller
+// stops on), from the residual r = b - A x and, per column, r.z with z = P^-1 r. It must
+// hold for every x: the bound decides when to stop, so it has to follow from what is known
+// of A and P (e.g. bounds on their eigenvalues), not from the iterates' history.
+using ErrorBound = std::function<double(const Eigen::MatrixXd& residual, const Eigen::ArrayXd& rz)>;
 
 struct PcgOutcome {
     int iterations = 0;
-    double relative_residual = 0;  // max over columns of |b - A x| / |b| (recurrence residual)
-    bool converged = false;
-    bool converged_by_step = false;  // stopped by `step_small`, not by the residual
+    double relative_residual = 0;  // max over columns of |b - A x| / |b| (recurrence residual), for logs
+    double error_bound = 0;        // the last value of the error bound
+    bool converged = false;        // error_bound <= allowed_error
     bool cancelled = false;
 };
 
-// Given the last update of x (one column per right-hand side), says whether the
-// remaining error is small enough to stop.
-using StepTest = std::function<bool(const Eigen::MatrixXd& step)>;
-
-// Solves A x = b for SPD A. `x` holds the initial guess on entry. Stops when every
-// column's relative residual is below `tolerance`, when `step_small` accepts two updates
-// in a row, or after `max_iterations`.
+// Solves A x = b for SPD A. `x` holds the initial guess on entry. Stops as soon as
+// `error_bound` is at most `allowed_error`, or after `max_iterations`.
 PcgOutcome block_pcg(const BlockOperator& apply_matrix, const BlockOperator& apply_preconditioner,
-                     const Eigen::MatrixXd& b, Eigen::MatrixXd& x, double tolerance, int max_iterations,
-                     const IterationObserver& observer = {}, const StepTest& step_small = {});
+                     const Eigen::MatrixXd& b, Eigen::MatrixXd& x, const ErrorBound& error_bound, double allowed_error,
+                     int max_iterations, const IterationObserver& observer = {});
 
 } // namespace geofilter

@@ -77,7 +77,6 @@ void check_options(const TransferFunction& g, const FilterOptions& options) {
     if (!(options.tolerance > 0 && options.tolerance < 1))
         throw Error("the solver tolerance must lie in (0, 1) (got " + format_number(options.tolerance) + ")");
     if (options.max_iterations < 1) throw Error("the iteration cap must be at least 1");
-    if (!(options.accuracy > 0)) throw Error("the accuracy must be > 0");
     for (const auto& p : g.poles)
         if (p.imag() == 0 && p.real() >= 0)
             throw Error("unstable filter: a pole lies at s = " + format_number(p.real()) + " >= 0");

@@ -3,6 +3,7 @@
 // numerator times one solve per pole. All factors are polynomials in the same Kt, so
 // they commute and can be applied in any order, and every shifted matrix Kt + c I has
 // the same sparsity: CHOLMOD's symbolic analysis is done once per mesh.
+#include "cascade.h"
 #include "pcg.h"
 #include "solvers.h"
 
@@ -49,7 +50,7 @@ public:
         llt_.factorize(kt_);
         if (llt_.cholmod().status == CHOLMOD_OUT_OF_MEMORY) throw std::bad_alloc();
         if (llt_.info() != Eigen::Success)
-            throw Error("the sparse Cholesky factorisation failed (Kt + " + std::to_string(shift) +
+            throw Error("the sparse Cholesky factorisation failed (Kt + " + format_number(shift) +
                         " I is not positive definite): the mesh has inverted or degenerate faces");
         shift_ = shift;
     }
@@ -67,7 +68,7 @@ namespace {
 
 // The pieces a factored filter is made of, sharing one matrix, one symbolic analysis and
 // one timing report.
-class FactoredStages {
+class FactoredStages : public PoleGroupSolver {
 public:
     FactoredStages(const FilterProblem& problem, FilterReport& report)
         : problem_(problem), report_(report), sqrt_mass_(problem.laplacian.mass.cwiseSqrt()),
@@ -82,7 +83,7 @@ public:
     Eigen::MatrixXd to_scaled(const Eigen::MatrixXd& p) const { return sqrt_mass_.asDiagonal() * p; }
     Eigen::MatrixXd from_scaled(const Eigen::MatrixXd& y) const { return sqrt_mass_.cwiseInverse().asDiagonal() * y; }
 
-    Eigen::MatrixXd polynomial(const std::vector<double>& c, const Eigen::MatrixXd& y) {
+    Eigen::MatrixXd polynomial(const std::vector<double>& c, const Eigen::MatrixXd& y) override {
         const auto t = std::chrono::steady_clock::now();
         Eigen::MatrixXd out = apply_polynomial(kt_, c, y);
         report_.seconds_solve += seconds_since(t);
@@ -90,8 +91,8 @@ public:
     }
 
     // (Kt - r)^-1 y for a real pole r < 0: one factorisation, one exact solve.
-    Eigen::MatrixXd real_pole(double r, const Eigen::MatrixXd& y, double progress) {
-        if (r >= 0) throw Error("unstable filter: a pole lies at s = " + std::to_string(r) + " >= 0");
+    Eigen::MatrixXd real_pole(double r, const Eigen::MatrixXd& y, double, double progress) override {
+        if (r >= 0) throw Error("unstable filter: a pole lies at s = " + format_number(r) + " >= 0");
         factorize(-r, progress);
         const auto t = std::chrono::steady_clock::now();
         Eigen::MatrixXd solved = cholesky_->solve(y);
@@ -101,11 +102,13 @@ public:
         return solved;
     }
 
-    // ((Kt - r)(Kt - conj r))^-1 y by CG preconditioned with (Kt + |r|)^2. Per eigenvalue
-    // l >= 0 the ratio |l - r|^2 / (l + |r|)^2 lies in [sin^2(arg(r)/2), 1], so the condition
-    // number is at most 1 / sin^2(arg(r)/2), whatever the mesh. `output_gain` is what later
-    // stages multiply the result by, so that the stopping test is made in output units.
-    Eigen::MatrixXd conjugate_pair(std::complex<double> r, const Eigen::MatrixXd& y, double output_gain, double progress) {
+    // ((Kt - r)(Kt - conj r))^-1 y by CG preconditioned with P = (Kt + |r|)^2. Per eigenvalue
+    // l >= 0 of Kt the ratio |l - r|^2 / (l + |r|)^2 lies in [c, 1], c = sin^2(arg(r)/2), so
+    // the condition number is at most 1/c whatever the mesh. The stopping test is a bound,
+    // not an estimate: with A the pair operator, A >= c P and A >= m I
+    // (m = pair_operator_lower_bound(r)), so |x - A^-1 y|^2 = r' A^-2 r <= r' P^-1 r / (c m).
+    Eigen::MatrixXd conjugate_pair(std::complex<double> r, const Eigen::MatrixXd& y, double allowed_error,
+                                   double progress) override {
         const double modulus = std::abs(r), twice_re = 2 * r.real(), modulus2 = std::norm(r);
         factorize(modulus, progress);
         const auto t = std::chrono::steady_clock::now();
@@ -118,28 +121,17 @@ public:
         const BlockOperator preconditioner = [&](const Eigen::MatrixXd& in, Eigen::MatrixXd& out) {
             out = cholesky_->solve(cholesky_->solve(in));
         };
-        // CG's error falls by rho = (sqrt(kappa) - 1) / (sqrt(kappa) + 1) per iteration, so the
-        // error left after an update is at most rho / (1 - rho) times that update.
         const double sin_half = std::sin(0.5 * std::abs(std::arg(r)));
-        const double rho = (1 - sin_half) / (1 + sin_half);
-        const Eigen::VectorXd output_scale = sqrt_mass_.cwiseInverse() * (std::abs(output_gain) * rho / (1 - rho));
-        const double allowed = problem_.options.accuracy * problem_.size;
-        const StepTest small = [&](const Eigen::MatrixXd& step) {
-            return (output_scale.asDiagonal() * step).cwiseAbs().maxCoeff() <= allowed;
+        const double lower = sin_half * sin_half * pair_operator_lower_bound(r);
+        const ErrorBound bound = [&](const Eigen::MatrixXd&, const Eigen::ArrayXd& rz) {
+            return std::sqrt(std::max(rz.sum(), 0.0) / lower);
         };
         Eigen::MatrixXd x = Eigen::MatrixXd::Zero(y.rows(), y.cols());
         const FilterOptions& options = problem_.options;
-        const PcgOutcome outcome = block_pcg(
-            quadratic, preconditioner, y, x, options.tolerance, options.max_iterations,
-            [&](int, double) { return !options.progress || options.progress(progress, "solving"); }, small);
-        report_.iterations += outcome.iterations;
-        report_.relative_residual = std::max(report_.relative_residual, outcome.relative_residual);
-        if (outcome.converged_by_step) report_.stopped_at_accuracy = problem_.options.accuracy;
-        if (outcome.cancelled) throw Error("cancelled by the user");
-        if (!outcome.converged)
-            throw Error("the solver did not converge in " + std::to_string(outcome.iterations) +
-                        " iterations (relative residual " + std::to_string(outcome.relative_residual) +
-                        "); raise maxIterations or the tolerance");
+        const PcgOutcome outcome =
+            block_pcg(quadratic, preconditioner, y, x, bound, allowed_error, options.max_iterations,
+                      [&](int, double) { return !options.progress || options.progress(progress, "solving"); });
+        record(outcome, allowed_error);
         report_.seconds_solve += seconds_since(t);
         return x;
     }
@@ -150,6 +142,16 @@ private:
         const auto t = std::chrono::steady_clock::now();
         cholesky_->factorize(shift);
         report_.seconds_factorization += seconds_since(t);
+    }
+
+    void record(const PcgOutcome& outcome, double allowed_error) {
+        report_.iterations += outcome.iterations;
+        report_.relative_residual = std::max(report_.relative_residual, outcome.relative_residual);
+        if (outcome.cancelled) throw Error("cancelled by the user");
+        if (!outcome.converged)
+            throw Error("the solver did not converge in " + std::to_string(outcome.iterations) +
+                        " iterations (its error bound is " + format_number(outcome.error_bound / allowed_error) +
+                        " times what the tolerance allows); raise maxIterations or the tolerance");
     }
 
     const FilterProblem& problem_;
@@ -165,6 +167,7 @@ Eigen::MatrixXd solve_factored(const FilterProblem& problem, FilterReport& repor
     const TransferFunction& g = problem.g;
     FactoredStages stages(problem, report);
     const Eigen::MatrixXd q = stages.to_scaled(problem.coordinates);
+    const double allowed = allowed_error(problem);
 
     if (g.second_order && g.poles.size() == 2 && g.poles[0].imag() != 0) {
         // G = Ginf + R/D with deg R <= 1: the iterative part only carries the band that G
@@ -173,31 +176,10 @@ Eigen::MatrixXd solve_factored(const FilterProblem& problem, FilterReport& repor
         const SecondOrderCoefficients& c = *g.second_order;
         const double g_inf = c.b2 / c.a2;
         const Eigen::MatrixXd rhs = stages.polynomial({c.b0 - g_inf * c.a0, c.b1 - g_inf * c.a1}, q);
-        const Eigen::MatrixXd x = stages.conjugate_pair(g.poles[0], rhs, 1 / c.a2, 0.5);
+        const Eigen::MatrixXd x = stages.conjugate_pair(g.poles[0], rhs, allowed * std::abs(c.a2), 0.5);
         return stages.from_scaled(g_inf * q + x / c.a2);
     }
-
-    // A cascade: numerator factor k, then pole group k (a real pole or a conjugate pair).
-    Eigen::MatrixXd y = q;
-    const size_t pole_count = g.poles.size();
-    size_t next_pole = 0, next_numerator = 0;
-    while (next_pole < pole_count || next_numerator < g.numerator.size()) {
-        if (next_numerator < g.numerator.size()) y = stages.polynomial(g.numerator[next_numerator++], y);
-        if (next_pole >= pole_count) continue;
-        const std::complex<double> pole = g.poles[next_pole];
-        const double progress = 0.1 + 0.8 * static_cast<double>(next_pole) / static_cast<double>(pole_count);
-        if (pole.imag() == 0) {
-            y = stages.real_pole(pole.real(), y, progress);
-            next_pole += 1;
-        } else {
-            // Stages after this one are polynomials and solves that do not grow the error
-            // beyond `gain`; the test is conservative enough for the filters the table offers.
-            y = stages.conjugate_pair(pole, y, g.gain, progress);
-            next_pole += 2;
-        }
-    }
-    y *= g.gain;
-    return stages.from_scaled(y);
+    return stages.from_scaled(apply_cascade(g, q, allowed, spectrum_upper_bound(stages.kt()), stages));
 }
 
 } // namespace geofilter::detail

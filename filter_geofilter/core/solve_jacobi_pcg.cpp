@@ -3,8 +3,11 @@
 // Kt = M^-1/2 K M^-1/2. Jacobi preconditioning is invariant under that diagonal
 // similarity, so the iterates are the paper's. Its cost grows as s1 falls (the condition
 // number is ~ a2 lambda_max^2 / a0): kept as the reference the fast solver is checked against.
+#include "cascade.h"
 #include "pcg.h"
 #include "solvers.h"
+
+#include <algorithm>
 
 #include <chrono>
 #include <cmath>
@@ -21,26 +24,81 @@ Eigen::VectorXd diagonal_of_square(const SparseMatrix& a) {
     return d;
 }
 
-// Solves (c0 + c1 Kt + c2 Kt^2) x = b, starting from x.
-PcgOutcome solve_quadratic(const SparseMatrix& kt, const Eigen::VectorXd& kt_diagonal, const Eigen::VectorXd& kt2_diagonal,
-                           double c0, double c1, double c2, const Eigen::MatrixXd& b, Eigen::MatrixXd& x,
-                           const FilterOptions& options, double progress_base) {
-    const BlockOperator matrix = [&](const Eigen::MatrixXd& in, Eigen::MatrixXd& out) {
-        const Eigen::MatrixXd k_in = kt * in;
-        out = c0 * in + c1 * k_in;
-        if (c2 != 0) out += c2 * (kt * k_in);
-    };
-    const Eigen::VectorXd inverse_diagonal =
-        (Eigen::VectorXd::Constant(kt.rows(), c0) + c1 * kt_diagonal + c2 * kt2_diagonal).cwiseInverse();
-    const BlockOperator jacobi = [&](const Eigen::MatrixXd& in, Eigen::MatrixXd& out) {
-        out = inverse_diagonal.asDiagonal() * in;
-    };
-    const double log_tol = std::log(options.tolerance);
-    return block_pcg(matrix, jacobi, b, x, options.tolerance, options.max_iterations, [&](int, double residual) {
-        const double fraction = std::clamp(std::log(std::max(residual, 1e-300)) / log_tol, 0.0, 1.0);
-        return !options.progress || options.progress(progress_base + 0.4 * fraction, "solving (Jacobi-PCG)");
-    });
+// min of c0 + c1 s + c2 s^2 over s >= 0 (c2 >= 0): a lower bound on the eigenvalues of
+// c0 + c1 Kt + c2 Kt^2, since those are its values at Kt's eigenvalues.
+double smallest_value_on_spectrum(double c0, double c1, double c2) {
+    const double vertex = c2 > 0 ? -c1 / (2 * c2) : 0.0;
+    return vertex > 0 ? c0 + vertex * (c1 + vertex * c2) : c0;
 }
+
+// Jacobi-PCG on (c0 + c1 Kt + c2 Kt^2) x = b, starting from x, until the error bound
+// |residual| / lambda_min (lambda_min from smallest_value_on_spectrum) is below allowed_error.
+class JacobiPcg : public PoleGroupSolver {
+public:
+    JacobiPcg(const FilterProblem& problem, FilterReport& report)
+        : problem_(problem), report_(report), kt_(mass_normalized_stiffness(problem.laplacian)),
+          kt_diagonal_(kt_.diagonal()), kt2_diagonal_(diagonal_of_square(kt_)) {}
+
+    const SparseMatrix& kt() const { return kt_; }
+
+    Eigen::MatrixXd polynomial(const std::vector<double>& c, const Eigen::MatrixXd& y) override {
+        return apply_polynomial(kt_, c, y);
+    }
+    Eigen::MatrixXd real_pole(double r, const Eigen::MatrixXd& y, double allowed_error, double progress) override {
+        Eigen::MatrixXd x = y;
+        solve(-r, 1, 0, y, x, allowed_error, progress);
+        return x;
+    }
+    Eigen::MatrixXd conjugate_pair(std::complex<double> r, const Eigen::MatrixXd& y, double allowed_error,
+                                   double progress) override {
+        Eigen::MatrixXd x = y;
+        solve(std::norm(r), -2 * r.real(), 1, y, x, allowed_error, progress);
+        return x;
+    }
+
+    void solve(double c0, double c1, double c2, const Eigen::MatrixXd& b, Eigen::MatrixXd& x, double allowed_error,
+               double progress_base) {
+        const BlockOperator matrix = [&](const Eigen::MatrixXd& in, Eigen::MatrixXd& out) {
+            const Eigen::MatrixXd k_in = kt_ * in;
+            out = c0 * in + c1 * k_in;
+            if (c2 != 0) out += c2 * (kt_ * k_in);
+        };
+        const Eigen::VectorXd inverse_diagonal =
+            (Eigen::VectorXd::Constant(kt_.rows(), c0) + c1 * kt_diagonal_ + c2 * kt2_diagonal_).cwiseInverse();
+        const BlockOperator jacobi = [&](const Eigen::MatrixXd& in, Eigen::MatrixXd& out) {
+            out = inverse_diagonal.asDiagonal() * in;
+        };
+        const double lambda_min = smallest_value_on_spectrum(c0, c1, c2);
+        if (!(lambda_min > 0)) throw Error("unstable filter: its denominator is not positive on the spectrum");
+        const ErrorBound bound = [&](const Eigen::MatrixXd& residual, const Eigen::ArrayXd&) {
+            return residual.norm() / lambda_min;
+        };
+        const FilterOptions& options = problem_.options;
+        double first_bound = 0;
+        const PcgOutcome outcome = block_pcg(matrix, jacobi, b, x, bound, allowed_error, options.max_iterations,
+                                             [&](int, double error_bound) {
+            if (first_bound == 0) first_bound = error_bound;
+            const double fraction = std::clamp(std::log(first_bound / error_bound) /
+                                                   std::max(std::log(first_bound / allowed_error), 1e-300),
+                                               0.0, 1.0);
+            return !options.progress || options.progress(progress_base + 0.4 * fraction, "solving (Jacobi-PCG)");
+        });
+        report_.iterations += outcome.iterations;
+        report_.relative_residual = std::max(report_.relative_residual, outcome.relative_residual);
+        if (outcome.cancelled) throw Error("cancelled by the user");
+        if (!outcome.converged)
+            throw Error("the Jacobi-PCG solver did not converge in " + std::to_string(outcome.iterations) +
+                        " iterations (its error bound is " + format_number(outcome.error_bound / allowed_error) +
+                        " times what the tolerance allows); raise maxIterations or the tolerance, or use the factored"
+                        " solver");
+    }
+
+private:
+    const FilterProblem& problem_;
+    FilterReport& report_;
+    SparseMatrix kt_;
+    Eigen::VectorXd kt_diagonal_, kt2_diagonal_;
+};
 
 } // namespace
 
@@ -48,52 +106,19 @@ Eigen::MatrixXd solve_jacobi_pcg(const FilterProblem& problem, FilterReport& rep
     const auto t0 = std::chrono::steady_clock::now();
     const TransferFunction& g = problem.g;
     const Eigen::VectorXd sqrt_mass = problem.laplacian.mass.cwiseSqrt();
-    const SparseMatrix kt = mass_normalized_stiffness(problem.laplacian);
-    const Eigen::VectorXd kt_diagonal = kt.diagonal();
-    const Eigen::VectorXd kt2_diagonal = diagonal_of_square(kt);
+    JacobiPcg pcg(problem, report);
     const Eigen::MatrixXd q = sqrt_mass.asDiagonal() * problem.coordinates;
     report.seconds_factorization += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-
-    auto check = [&](const PcgOutcome& outcome) {
-        report.iterations += outcome.iterations;
-        report.relative_residual = std::max(report.relative_residual, outcome.relative_residual);
-        if (outcome.cancelled) throw Error("cancelled by the user");
-        if (!outcome.converged)
-            throw Error("the Jacobi-PCG solver did not converge in " + std::to_string(outcome.iterations) +
-                        " iterations (relative residual " + std::to_string(outcome.relative_residual) +
-                        "); raise the iteration cap or use the factored solver");
-    };
 
     Eigen::MatrixXd y;
     if (g.second_order) {
         // Eq. 9 as the paper solves it: one CG on the whole second-order operator.
         const SecondOrderCoefficients& c = *g.second_order;
-        Eigen::MatrixXd rhs = c.b0 * q;
-        const Eigen::MatrixXd kq = kt * q;
-        rhs += c.b1 * kq;
-        if (c.b2 != 0) rhs += c.b2 * (kt * kq);
+        const Eigen::MatrixXd rhs = pcg.polynomial({c.b0, c.b1, c.b2}, q);
         y = c(0) * q;  // the low-frequency answer is a good start
-        check(solve_quadratic(kt, kt_diagonal, kt2_diagonal, c.a0, c.a1, c.a2, rhs, y, problem.options, 0.1));
+        pcg.solve(c.a0, c.a1, c.a2, rhs, y, allowed_error(problem), 0.1);
     } else {
-        // A cascade: numerator factor k, then pole k, each pole by its own Jacobi-PCG.
-        y = q;
-        size_t next_pole = 0;
-        for (size_t k = 0; k < std::max(g.numerator.size(), g.poles.size()); ++k) {
-            if (k < g.numerator.size()) y = apply_polynomial(kt, g.numerator[k], y);
-            if (next_pole >= g.poles.size()) continue;
-            const std::complex<double> r = g.poles[next_pole];
-            Eigen::MatrixXd x = y;
-            if (r.imag() == 0) {
-                check(solve_quadratic(kt, kt_diagonal, kt2_diagonal, -r.real(), 1, 0, y, x, problem.options, 0.1));
-                next_pole += 1;
-            } else {
-                check(solve_quadratic(kt, kt_diagonal, kt2_diagonal, std::norm(r), -2 * r.real(), 1, y, x, problem.options,
-                                      0.1));
-                next_pole += 2;
-            }
-            y.swap(x);
-        }
-        y *= g.gain;
+        y = apply_cascade(g, q, allowed_error(problem), spectrum_upper_bound(pcg.kt()), pcg);
     }
     report.seconds_solve += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() -
                             report.seconds_factorization;

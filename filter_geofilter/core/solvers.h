@@ -18,6 +18,11 @@ struct FilterProblem {
     double size;  // bounding-box diagonal of the filtered vertices
 };
 
+// The error the solvers may leave, as a Frobenius norm in the frame q = M^1/2 p: there it is
+// the area-weighted L2 norm of the displacement error, so dividing by sqrt(area) gives the
+// area-weighted RMS error that FilterOptions::tolerance bounds (as a fraction of `size`).
+double allowed_error(const FilterProblem& problem);
+
 Eigen::MatrixXd solve_factored(const FilterProblem& problem, FilterReport& report);
 Eigen::MatrixXd solve_jacobi_pcg(const FilterProblem& problem, FilterReport& report);
 

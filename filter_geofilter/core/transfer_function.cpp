@@ -10,7 +10,7 @@ namespace geofilter {
 namespace {
 
 void require_finite(double v, const char* name) {
-    if (!std::isfinite(v)) throw Error(std::string(name) + " must be a finite number (got " + std::to_string(v) + ")");
+    if (!std::isfinite(v)) throw Error(std::string(name) + " must be a finite number (got " + format_number(v) + ")");
 }
 
 std::string fmt(double v) { return format_number(v); }
@@ -23,9 +23,9 @@ double poly(const std::vector<double>& c, double s) {
 
 } // namespace
 
-std::string format_number(double value) {
+std::string format_number(double value, int significant_digits) {
     std::ostringstream os;
-    os.precision(6);
+    os.precision(significant_digits);
     os << value;
     return os.str();
 }

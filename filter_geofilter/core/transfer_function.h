@@ -49,7 +49,7 @@ struct TransferFunction {
 };
 
 // Eq. 15. Refuses (Error naming the parameter) s1 <= 0, s2 <= 0, non-finite values,
-// G1 = 1, G1 = Ginf, and a denominator with a root on s >= 0 (PAPER-NOTES section 4).
+// G1 = 1, G1 = Ginf, and a denominator with a root on s >= 0 (docs/paper-notes.md §4).
 SecondOrderCoefficients design_coefficients(const SecondOrderSpec& spec);
 TransferFunction design_second_order(const SecondOrderSpec& spec);
 
@@ -57,7 +57,7 @@ TransferFunction design_second_order(const SecondOrderSpec& spec);
 // `warnings` receives a note when there are more zeros than poles (G grows without bound).
 TransferFunction design_pole_zero(const PoleZeroSpec& spec, std::vector<std::string>* warnings = nullptr);
 
-// Where |G| peaks, whether it overshoots |G1| or changes sign (PAPER-NOTES section 3).
+// Where |G| peaks, whether it overshoots |G1| or changes sign (docs/paper-notes.md §3).
 struct ResponseReport {
     double peak_gain = 0;      // max |G(s)| over s >= 0 (sampled densely on a log grid + 0 + inf)
     double peak_frequency = 0; // where it is (inf when the peak is the high-frequency limit)

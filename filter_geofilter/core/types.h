@@ -23,7 +23,7 @@ public:
     using std::runtime_error::runtime_error;
 };
 
-// A number as messages and logs show it: 6 significant digits.
-std::string format_number(double value);
+// A number as messages and logs show it: 6 significant digits unless asked for more.
+std::string format_number(double value, int significant_digits = 6);
 
 } // namespace geofilter

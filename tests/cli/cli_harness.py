@@ -12,6 +12,7 @@ import subprocess
 import tempfile
 
 import numpy as np
+from reference_design import eq15_gain  # noqa: F401 (used as harness.eq15_gain)
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 DEFAULT_TOOL = os.path.join(HERE, "..", "..", "build", "filter_geofilter", "cli", "geofilter")
@@ -259,11 +260,6 @@ def radii(vertices, center=None):
 
 
 # ---------------------------------------------------------------------------------------------
-# Eq. 15 of Kim & Rossignac 2005 as printed (a0 = 1, b0 = G0)
-
-def eq15_gain(s, s1, s2, G0, G1, Ginf):
-    a2 = -(G0 - G1) / (G1 - Ginf) / s1 ** 2
-    b2 = a2 * Ginf
-    a1 = -(G0 - G1) / (1 - G1) * 2 / s1 - (1 - G0) / (1 - G1) / s2 - a2 * (1 - Ginf) / (1 - G1) * s2
-    b1 = (G0 - G1) / (1 - G1) * (s2 - 2 * s1) / s1 ** 2 - (1 - G0) / (1 - G1) * G1 / s2 - a2 * Ginf * s2
-    return (G0 + b1 * s + b2 * s * s) / (1 + a1 * s + a2 * s * s)
+# Eq. 15 comes from the shared test reference, tests/support/reference_design.py (on
+# PYTHONPATH through ctest): its five conditions solved as a linear system, never a copy of
+# the closed form the core uses.

@@ -52,7 +52,7 @@ class ErrorTest(unittest.TestCase):
         self.assert_refused("custom", "--G1", 1, self.input, self.existing, status=1, mentions="G1")
 
     def test_unstable_design(self):
-        # PAPER-NOTES section 4: the printed highpass example has a real pole at s = 18.
+        # docs/paper-notes.md §4: the printed highpass example has a real pole at s = 18.
         self.assert_refused("custom", "--s1", 25, "--s2", 10, "--G0", 1, "--G1", 3, "--Ginf", 0, self.input,
                             self.output, status=1, mentions="unstable")
 

@@ -37,7 +37,7 @@ class PlotTest(unittest.TestCase):
         return p
 
     def test_second_order_with_sign_change(self):
-        # Fig. 1's parameters: G turns negative past s2 (PAPER-NOTES section 3), drawn dashed.
+        # Fig. 1's parameters: G turns negative past s2 (docs/paper-notes.md §3), drawn dashed.
         p = self.plot("fig1.png", "custom", "--s1", 20, "--s2", 25, "--G0", 1, "--G1", 2, "--Ginf", 0)
         self.assertIn("changes sign", p.stderr)
 

@@ -29,8 +29,8 @@ class SphereTest(unittest.TestCase):
             h.WRITERS[ext](path, v, f)
         return path
 
-    def test_eq15_as_written_in_this_test(self):
-        # The five conditions the five numbers stand for (PAPER-NOTES section 2).
+    def test_eq15_reference_meets_its_five_conditions(self):
+        # The five conditions the five numbers stand for (docs/paper-notes.md §2).
         g = lambda s: h.eq15_gain(s, **FIG6)
         self.assertAlmostEqual(g(0), FIG6["G0"], places=12)
         self.assertAlmostEqual(g(FIG6["s1"]), FIG6["G1"], places=9)
@@ -89,6 +89,24 @@ class SphereTest(unittest.TestCase):
         self.assertEqual(p.returncode, 0, h.describe(p))
         r = float(re.search(r"measure: r = ([-+.\deE]+)", p.stdout).group(1))
         self.assertAlmostEqual(r, 0.6, delta=0.05)
+
+    def test_georeferenced_selection_measures_the_same(self):
+        # A 5 cm cap on a scan stored in UTM metres: the measured frequency must not depend on
+        # coordinates of ~4e6 (one-pass second moments would cancel to rounding noise there).
+        R = 0.05
+        v, f = h.icosphere(4, R)
+        offset = np.array([5e5, 4e6, 1e2])
+        local, far = os.path.join(self.dir, "cap-local.off"), os.path.join(self.dir, "cap-utm.off")
+        h.write_off(local, v, f)
+        h.write_off(far, v + offset, f)
+        box = [-2 * R, -2 * R, 0.5 * R, 2 * R, 2 * R, 2 * R]
+        frequencies = []
+        for path, shift in ((local, np.zeros(3)), (far, offset)):
+            corners = np.concatenate([box[:3] + shift, box[3:] + shift])
+            p = h.run("measure", "--select-box", ",".join("%.17g" % c for c in corners), path)
+            self.assertEqual(p.returncode, 0, h.describe(p))
+            frequencies.append(float(re.search(r"sphere-like s = 2/r\^2 = ([-+.\deE]+)", p.stdout).group(1)))
+        self.assertAlmostEqual(frequencies[1] / frequencies[0], 1, delta=1e-6)
 
 
 if __name__ == "__main__":

@@ -42,6 +42,9 @@ private:
     size_t pos_ = 0;
 };
 
+// memcmp of n bytes; an empty matrix may have a null data pointer, which memcmp must not see.
+bool same_bytes(const void* a, const void* b, size_t n) { return n == 0 || std::memcmp(a, b, n) == 0; }
+
 [[noreturn]] void fail(const char* what) {
     std::fprintf(stderr, "fuzz invariant broken: %s\n", what);
     std::abort();
@@ -94,7 +97,12 @@ void run_core_on_bytes(const uint8_t* data, size_t size) {
     // Bounded work per input.
     values[param::max_iterations] = std::min(values[param::max_iterations], 300.0);
 
-    const Points before = mesh.points;
+    // Copies taken before the call, compared bit for bit after it (memcmp, so that a NaN
+    // rewritten with another payload, or -0 for 0, counts as a change): the core must never
+    // write through its input, whatever it refuses or computes.
+    const Points points_before = mesh.points;
+    const Triangles triangles_before = mesh.triangles;
+    const std::vector<int> selected_before = selected;
     try {
         const RunOutput out = run_filter(spec, values, {mesh.points, mesh.triangles, selected, {}});
         if (spec.kind != FilterKind::Measure) {
@@ -104,8 +112,13 @@ void run_core_on_bytes(const uint8_t* data, size_t size) {
     } catch (const Error&) {
         // A refusal: fine, as long as it left the input alone (checked below).
     }
-    if (std::memcmp(before.data(), mesh.points.data(), sizeof(double) * size_t(before.size())) != 0)
-        fail("the input mesh was modified");
+    if (mesh.points.rows() != points_before.rows() ||
+        !same_bytes(points_before.data(), mesh.points.data(), sizeof(double) * size_t(points_before.size())))
+        fail("the input vertex coordinates were modified");
+    if (mesh.triangles.rows() != triangles_before.rows() ||
+        !same_bytes(triangles_before.data(), mesh.triangles.data(), sizeof(int) * size_t(triangles_before.size())))
+        fail("the input faces were modified");
+    if (selected != selected_before) fail("the input selection was modified");
 }
 
 } // namespace geofilter::fuzz

@@ -16,6 +16,7 @@ import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
 
 import numpy as np
+from reference_design import eq15_gain  # noqa: F401 (used as harness.eq15_gain)
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 DEFAULT_PREFIX = os.path.join(HERE, "..", "..", "build", "meshlab-prefix")
@@ -335,16 +336,12 @@ def radii(vertices, center=None):
 
 
 # ---------------------------------------------------------------------------------------------
-# Eq. 15 of Kim & Rossignac 2005, written from the paper independently of the C++ core.
+# Eq. 15 comes from the shared test reference, tests/support/reference_design.py (on
+# PYTHONPATH through ctest): its five conditions solved as a linear system, never a copy of
+# the closed form the core uses.
 
-def eq15_gain(s, s1, s2, G0, G1, Ginf):
-    a0, b0 = 1.0, G0
-    a2 = -(G0 - G1) / (G1 - Ginf) / s1 ** 2
-    b2 = a2 * Ginf
-    a1 = -(G0 - G1) / (1 - G1) * 2 / s1 - (1 - G0) / (1 - G1) / s2 - a2 * (1 - Ginf) / (1 - G1) * s2
-    b1 = (G0 - G1) / (1 - G1) * (s2 - 2 * s1) / s1 ** 2 - (1 - G0) / (1 - G1) * G1 / s2 - a2 * Ginf * s2
-    return (b0 + b1 * s + b2 * s * s) / (a0 + a1 * s + a2 * s * s)
 
+# Eq. 16, whose product form needs no solving.
 
 def eq16_gain(s, G0, zeros, poles):
     """Eq. 16: G0 * (prod p / prod z) * prod (s + z) / prod (s + p), unused corners (0) dropped."""

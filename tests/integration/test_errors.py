@@ -41,7 +41,7 @@ class Refusals(unittest.TestCase):
                             "p2")
 
     def test_unstable_design(self):
-        # PAPER-NOTES section 4: this "highpass" has denominator roots at s = 18 and 52.
+        # docs/paper-notes.md §4: this "highpass" has denominator roots at s = 18 and 52.
         self.expect_failure("unstable", [h.sphere(1, 2), h.geofilter("GeoFilter: Custom", useSelection=False,
                                                                      s1=25.0, s2=10.0, G0=1.0, G1=3.0, Ginf=0.0)],
                             "unstable")

@@ -12,6 +12,7 @@
 #include "core/region.h"
 #include "core/shapes.h"
 #include "filter_table.h"
+#include "reference_design.h"
 
 #include <common/globals.h>
 #include <common/mlexception.h>
@@ -263,16 +264,12 @@ double meanRadius(const CMeshO &cm)
 	return sum / n;
 }
 
-// Eq. 15 of Kim & Rossignac 2005, written from the paper here rather than taken from the
-// core, so that the sphere test checks the core against the paper.
+// Eq. 15 from the shared test reference (tests/support): its five conditions solved as a
+// linear system, not the core's closed form, so that the sphere tests check the core against
+// the paper's conditions.
 double eq15(double s, double s1, double s2, double G0, double G1, double Ginf)
 {
-	const double a0 = 1, b0 = G0;
-	const double a2 = -(G0 - G1) / (G1 - Ginf) / (s1 * s1);
-	const double b2 = a2 * Ginf;
-	const double a1 = -(G0 - G1) / (1 - G1) * 2 / s1 - (1 - G0) / (1 - G1) / s2 - a2 * (1 - Ginf) / (1 - G1) * s2;
-	const double b1 = (G0 - G1) / (1 - G1) * (s2 - 2 * s1) / (s1 * s1) - (1 - G0) / (1 - G1) * G1 / s2 - a2 * Ginf * s2;
-	return (b0 + b1 * s + b2 * s * s) / (a0 + a1 * s + a2 * s * s);
+	return geofilter::reference::eq15_reference(s1, s2, G0, G1, Ginf).gain(s);
 }
 
 const Values kFig6 = {{"s1", 10.0}, {"s2", 25.0}, {"G0", 1.0}, {"G1", 30.0}, {"Ginf", 0.0}, {"useSelection", false}};
@@ -356,7 +353,7 @@ TEST(Parameters, MatchTheTableAndUseSelectionFollowsTheSelection)
 	}
 }
 
-// (a) PAPER-NOTES section 6: icospheres of several radii, Fig. 6's filter, radius ratio
+// (a) docs/paper-notes.md §6: icospheres of several radii, Fig. 6's filter, radius ratio
 // within 2% of G(2/r^2).
 TEST(Sphere, Fig6RadiusRatiosFollowEq15)
 {
@@ -433,7 +430,7 @@ TEST(Errors, UnstableDesignLeavesTheMeshBitForBitUnchanged)
 {
 	MeshDocument md;
 	createSphere(md, 1.0, 3);
-	// PAPER-NOTES section 4: real roots 18.0 and 52.0 of the denominator.
+	// docs/paper-notes.md §4: real roots 18.0 and 52.0 of the denominator.
 	expectRefusedUnchanged(md, "GeoFilter: Custom",
 	                       {{"s1", 25.0}, {"s2", 10.0}, {"G0", 1.0}, {"G1", 3.0}, {"Ginf", 0.0}, {"useSelection", false}},
 	                       "stab");

@@ -22,7 +22,61 @@ Mesh wavy_sheet() {
     return g;
 }
 
+// The Dirichlet split of a mesh, built here with dense matrices (no core routine but the
+// Laplacian): K_II, K_IB, the interior masses and the harmonic extension from a dense
+// factorisation of K_II.
+struct DenseDirichlet {
+    std::vector<Eigen::Index> interior, boundary;
+    Eigen::MatrixXd k_ii, k_ib;
+    Eigen::VectorXd m_i;
+    Eigen::MatrixXd h;  // n x 3: p on the boundary, -K_II^-1 K_IB p_B inside
+};
+
+DenseDirichlet dense_dirichlet(const Laplacian& l, const std::vector<bool>& on_boundary, const Eigen::MatrixXd& p) {
+    DenseDirichlet d;
+    for (Eigen::Index i = 0; i < p.rows(); ++i) (on_boundary[i] ? d.boundary : d.interior).push_back(i);
+    const Eigen::MatrixXd k = Eigen::MatrixXd(l.stiffness);
+    const auto ni = Eigen::Index(d.interior.size()), nb = Eigen::Index(d.boundary.size());
+    d.k_ii.resize(ni, ni);
+    d.k_ib.resize(ni, nb);
+    d.m_i.resize(ni);
+    Eigen::MatrixXd p_b(nb, 3);
+    for (Eigen::Index a = 0; a < ni; ++a) {
+        d.m_i[a] = l.mass[d.interior[a]];
+        for (Eigen::Index b = 0; b < ni; ++b) d.k_ii(a, b) = k(d.interior[a], d.interior[b]);
+        for (Eigen::Index b = 0; b < nb; ++b) d.k_ib(a, b) = k(d.interior[a], d.boundary[b]);
+    }
+    for (Eigen::Index b = 0; b < nb; ++b) p_b.row(b) = p.row(d.boundary[b]);
+    const Eigen::MatrixXd h_i = d.k_ii.ldlt().solve(-d.k_ib * p_b);
+    d.h = p;
+    for (Eigen::Index a = 0; a < ni; ++a) d.h.row(d.interior[a]) = h_i.row(a);
+    return d;
+}
+
 } // namespace
+
+TEST(Boundary, HarmonicExtensionIsHarmonicAndEqualsADenseSolve) {
+    const Mesh g = wavy_sheet();
+    const std::vector<bool> on_boundary = boundary_vertices(g.triangles, g.points.rows());
+    const Laplacian l = cotan_laplacian(g.points, g.triangles);
+    const Eigen::MatrixXd p = g.points;
+    const Eigen::MatrixXd h = harmonic_extension(l, on_boundary, p);
+    const DenseDirichlet d = dense_dirichlet(l, on_boundary, p);
+    ASSERT_EQ(d.boundary.size(), 96u);
+
+    // h = p on the boundary, exactly.
+    for (Eigen::Index b : d.boundary) EXPECT_EQ(h.row(b), p.row(b)) << "boundary vertex " << b;
+    // Harmonic inside: K_II h_I + K_IB p_B = 0, relative to |K| |p|.
+    Eigen::MatrixXd h_i(d.interior.size(), 3), p_b(d.boundary.size(), 3);
+    for (size_t a = 0; a < d.interior.size(); ++a) h_i.row(a) = h.row(d.interior[a]);
+    for (size_t b = 0; b < d.boundary.size(); ++b) p_b.row(b) = p.row(d.boundary[b]);
+    const double k_norm = Eigen::MatrixXd(l.stiffness).norm();
+    EXPECT_LT((d.k_ii * h_i + d.k_ib * p_b).norm(), 1e-10 * k_norm * p.norm());
+    // And the same as the dense solution.
+    EXPECT_LT((h - d.h).cwiseAbs().maxCoeff(), 1e-10 * bbox_diagonal(g.points));
+    // Not trivially so: the interior is not the input shape (the wave is not harmonic).
+    EXPECT_GT((h - p).cwiseAbs().maxCoeff(), 1e-3);
+}
 
 TEST(Boundary, FindsTheRimOfAGrid) {
     const Mesh g = grid(4, 1.0);
@@ -38,14 +92,14 @@ TEST(Boundary, FixedBoundaryEqualsExactDirichletSpectralFilter) {
     const Mesh g = wavy_sheet();
     const std::vector<bool> on_boundary = boundary_vertices(g.triangles, g.points.rows());
     const Laplacian l = cotan_laplacian(g.points, g.triangles);
-    const Eigen::MatrixXd h = harmonic_extension(l, on_boundary, g.points);
-
+    // The reference is dense throughout: the dense harmonic extension and the dense Dirichlet
+    // eigenproblem K_II v = lambda M_I v, not the core's harmonic_extension/restrict_laplacian.
+    const DenseDirichlet d = dense_dirichlet(l, on_boundary, g.points);
+    const Eigen::MatrixXd& h = d.h;
     std::vector<bool> interior(on_boundary.size());
     for (size_t i = 0; i < interior.size(); ++i) interior[i] = !on_boundary[i];
-    const Laplacian inner = restrict_laplacian(l, interior);
-    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(Eigen::MatrixXd(inner.stiffness),
-                                                                   Eigen::MatrixXd(inner.mass.asDiagonal()));
-    Eigen::MatrixXd detail(inner.mass.size(), 3);
+    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(d.k_ii, Eigen::MatrixXd(d.m_i.asDiagonal()));
+    Eigen::MatrixXd detail(d.m_i.size(), 3);
     for (size_t i = 0, k = 0; i < interior.size(); ++i)
         if (interior[i]) detail.row(k++) = g.points.row(i) - h.row(i);
 
@@ -54,7 +108,7 @@ TEST(Boundary, FixedBoundaryEqualsExactDirichletSpectralFilter) {
         Eigen::VectorXd gains(eig.eigenvalues().size());
         for (Eigen::Index i = 0; i < gains.size(); ++i) gains[i] = tf(eig.eigenvalues()[i]);
         const Eigen::MatrixXd filtered_detail =
-            eig.eigenvectors() * (gains.asDiagonal() * (eig.eigenvectors().transpose() * (inner.mass.asDiagonal() * detail)));
+            eig.eigenvectors() * (gains.asDiagonal() * (eig.eigenvectors().transpose() * (d.m_i.asDiagonal() * detail)));
         for (Solver solver : {Solver::Factored, Solver::JacobiPcg}) {
             FilterOptions options;
             options.fix_boundary = true;

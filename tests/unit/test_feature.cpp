@@ -83,3 +83,55 @@ TEST(Feature, OneFaceIsAFlatEllipsoidAndEmptySelectionsAreRefused) {
     flat.points.col(1).setZero();  // every face collapses onto a line
     EXPECT_THROW(measure_feature(flat.points, flat.triangles, {0, 1}), Error);
 }
+
+TEST(Feature, RadiusRuleIsContinuousInTheRadii) {
+    // The old rule (mean of the two most similar radii) jumped from r = 1.0 at
+    // (1.5, 0.5, 0.16) to r = 0.335 at (1.5, 0.5, 0.17).
+    const double at_016 = feature_radius({1.5, 0.5, 0.16}), at_017 = feature_radius({1.5, 0.5, 0.17});
+    EXPECT_LT(std::abs(at_016 - at_017), 0.02 * at_016);
+    // Sweep each aspect ratio finely: a step of 0.1 % in one radius moves r by at most ~0.1 %
+    // of the largest radius (the rule is Lipschitz away from degenerate ellipsoids).
+    for (double r2 : {0.2, 0.5, 0.9, 1.0}) {
+        double previous = feature_radius({1.0, r2, 0.01 * r2});
+        for (double t = 0.01; t <= 1.0; t += 0.001) {
+            const double r = feature_radius({1.0, r2, t * r2});
+            EXPECT_LT(std::abs(r - previous), 2e-3) << "r2 = " << r2 << ", r3/r2 = " << t;
+            previous = r;
+        }
+    }
+    for (double r3 : {0.05, 0.3}) {
+        double previous = feature_radius({r3 / 0.3, r3, r3 * 0.999});
+        for (double r1 = r3 / 0.3; r1 >= r3; r1 *= 0.999) {
+            const double r = feature_radius({r1, r3, r3 * 0.999});
+            EXPECT_LT(std::abs(r - previous), 2e-3 * r1) << "r1 = " << r1;
+            previous = r;
+        }
+    }
+}
+
+TEST(Feature, RadiusRuleKeepsTheShapesItIsFor) {
+    EXPECT_DOUBLE_EQ(feature_radius({0.7, 0.7, 0.7}), 0.7);     // sphere
+    EXPECT_DOUBLE_EQ(feature_radius({0.7, 0.7, 0.35}), 0.7);    // cap: height r/2
+    EXPECT_DOUBLE_EQ(feature_radius({3.0, 0.2, 0.2}), 0.2);     // tube
+    EXPECT_DOUBLE_EQ(feature_radius({0.7, 0.7, 0.0}), 0.7);     // flat disc
+    EXPECT_EQ(feature_radius({1.0, 0.0, 0.0}), 0.0);            // a line: no radius (refused)
+}
+
+TEST(Feature, GeoreferencedCoordinatesGiveTheSameFrequency) {
+    // A 5 cm bump on a scan stored in UTM metres: raw second moments (~1e13) would cancel
+    // the feature's (~1e-3) to rounding noise.
+    const double r = 0.05;
+    const Mesh s = icosphere(4, r);
+    std::vector<int> cap;
+    for (Eigen::Index f = 0; f < s.triangles.rows(); ++f)
+        if (s.points(s.triangles(f, 0), 2) >= -1e-12 && s.points(s.triangles(f, 1), 2) >= -1e-12 &&
+            s.points(s.triangles(f, 2), 2) >= -1e-12)
+            cap.push_back(static_cast<int>(f));
+    const FeatureEllipsoid local = measure_feature(s.points, s.triangles, cap);
+    Mesh far = s;
+    far.points.rowwise() += Eigen::RowVector3d(5e5, 4e6, 1e2);
+    const FeatureEllipsoid utm = measure_feature(far.points, far.triangles, cap);
+    EXPECT_NEAR(utm.frequency(FeatureShape::Sphere), local.frequency(FeatureShape::Sphere),
+                1e-6 * local.frequency(FeatureShape::Sphere));
+    EXPECT_LT((utm.center - Eigen::Vector3d(5e5, 4e6, 1e2) - local.center).norm(), 1e-6 * r);
+}

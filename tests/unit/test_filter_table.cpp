@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <complex>
 #include <set>
 
 using namespace geofilter;
@@ -24,7 +26,7 @@ TEST(FilterTable, NamesAreTheOnesScriptsDependOn) {
     EXPECT_EQ(cli.size(), expected.size());
 }
 
-// Every preset default must pass the stability check (PAPER-NOTES section 4) and mean
+// Every preset default must pass the stability check (docs/paper-notes.md §4) and mean
 // what its name says.
 TEST(FilterTable, EverySecondOrderPresetIsStableAndHasTheFiveParameters) {
     for (const auto& f : filter_table()) {
@@ -50,6 +52,28 @@ TEST(FilterTable, EverySecondOrderPresetIsStableAndHasTheFiveParameters) {
     EXPECT_LT(gain("bandpass", 0), 1e-12);
     EXPECT_LT(gain("notch", 630), 0.02);
     EXPECT_GT(gain("exaggerate", 25), 2.9);
+}
+
+// README and docs/paper-notes.md §4: the Highpass preset's poles are real and negative (two
+// exact solves), every other second-order preset has one complex pair.
+TEST(FilterTable, HighpassPolesAreRealTheOtherPresetsHaveAComplexPair) {
+    for (const auto& f : filter_table()) {
+        if (f.kind != FilterKind::SecondOrder) continue;
+        SCOPED_TRACE(f.name);
+        std::vector<std::string> log;
+        const TransferFunction g = design_from_values(f, default_values(f, false), nullptr, log, nullptr);
+        ASSERT_EQ(g.poles.size(), 2u);
+        if (f.name == "GeoFilter: Highpass") {
+            for (const auto& pole : g.poles) EXPECT_EQ(pole.imag(), 0);
+            std::vector<double> re{g.poles[0].real(), g.poles[1].real()};
+            std::sort(re.begin(), re.end());
+            EXPECT_NEAR(re[0], -157.88, 0.01);
+            EXPECT_NEAR(re[1], -5.758, 0.001);
+        } else {
+            EXPECT_NE(g.poles[0].imag(), 0);
+            EXPECT_LT(std::abs(g.poles[1] - std::conj(g.poles[0])), 1e-9 * std::abs(g.poles[0]));
+        }
+    }
 }
 
 TEST(FilterTable, UseSelectionDefaultFollowsTheSelection) {

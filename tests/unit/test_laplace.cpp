@@ -4,7 +4,7 @@
 
 using namespace geofilter;
 
-// PAPER-NOTES section 1: with the FEM factor 1/2, the coordinate functions of a sphere
+// docs/paper-notes.md §1: with the FEM factor 1/2, the coordinate functions of a sphere
 // of radius r are eigenvectors of M^-1 K with eigenvalue 2/r^2 (eq. 17).
 TEST(Laplace, SphereCoordinatesAreEigenvectorsWithEigenvalueTwoOverRSquared) {
     for (double r : {0.05, 1.0, 7.0}) {
@@ -23,7 +23,7 @@ TEST(Laplace, SphereCoordinatesAreEigenvectorsWithEigenvalueTwoOverRSquared) {
 }
 
 TEST(Laplace, LowSphereSpectrumMatchesSphericalHarmonics) {
-    // l(l+1)/r^2: 0 once, 2 three times, 6 five times (PAPER-NOTES section 1).
+    // l(l+1)/r^2: 0 once, 2 three times, 6 five times (docs/paper-notes.md §1).
     const reference::Spectrum s = reference::spectrum_of(icosphere(3, 1.0));
     EXPECT_NEAR(s.eigenvalues[0], 0, 1e-9);
     for (int i = 1; i <= 3; ++i) EXPECT_NEAR(s.eigenvalues[i], 2, 0.01);

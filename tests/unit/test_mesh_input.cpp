@@ -3,6 +3,7 @@
 #include "core/mesh_prep.h"
 #include "core/shapes.h"
 #include "run_filter.h"
+#include "spectral.h"
 
 #include <gtest/gtest.h>
 
@@ -17,6 +18,14 @@ std::string refusal(const Points& p, const Triangles& t) {
         return e.what();
     }
     return "accepted";
+}
+
+// The largest distance between `out` and the dense spectral filter (spectral.h) of the mesh
+// (points, triangles), relative to the mesh's size.
+double relative_distance_to_dense_filter(const Points& out, const Points& points, const Triangles& triangles,
+                                         const TransferFunction& g) {
+    const Points expected = reference::spectral_filter(reference::spectrum_of({points, triangles}), points, g);
+    return (out - expected).rowwise().norm().maxCoeff() / reference::bbox_diagonal(points);
 }
 
 } // namespace
@@ -61,14 +70,21 @@ TEST(MeshInput, DegenerateFacesAreSkippedAndUnreferencedVerticesStayPut) {
     EXPECT_LT((out.topRows(n) - clean).cwiseAbs().maxCoeff(), 1e-12);
 }
 
-TEST(MeshInput, OpenBoundariesAndNeedlesStillGiveFiniteResults) {
+TEST(MeshInput, OpenBoundariesAndNeedlesGiveTheExactFilter) {
     Mesh g = grid(20, 1.0);
     g.points.col(2) = (g.points.col(0).array() * 7).sin() * 0.05;  // a wavy open sheet
     g.points(5, 0) += 0.0499;  // squeeze a vertex towards its neighbour: needle triangles
-    const Points out = apply_filter(g.points, g.triangles, design_second_order({25, 50, 1, 1.1, 0}));
-    EXPECT_TRUE(out.allFinite());
-    // Lowpass removes the wave (s = 49 > s1) and keeps the sheet where it is.
-    EXPECT_LT(out.col(2).cwiseAbs().maxCoeff(), g.points.col(2).cwiseAbs().maxCoeff());
+    const TransferFunction lowpass = design_second_order({25, 50, 1, 1.1, 0});
+    for (Solver solver : {Solver::Factored, Solver::JacobiPcg}) {
+        FilterOptions options;
+        options.solver = solver;
+        const Points out = apply_filter(g.points, g.triangles, lowpass, options);
+        ASSERT_TRUE(out.allFinite());
+        // Needles make the system stiff, not different: the result is the exact filter.
+        EXPECT_LT(relative_distance_to_dense_filter(out, g.points, g.triangles, lowpass), 1e-6) << solver_name(solver);
+        // Lowpass removes the wave (s = 49 > s1) and keeps the sheet where it is.
+        EXPECT_LT(out.col(2).cwiseAbs().maxCoeff(), g.points.col(2).cwiseAbs().maxCoeff());
+    }
 }
 
 TEST(MeshInput, UseSelectionWithNothingSelectedIsRefusedAndNamesTheFix) {
@@ -112,9 +128,14 @@ TEST(MeshInput, NonManifoldEdgesAndVerticesAreFiltered) {
     t << g.triangles, Eigen::RowVector3i(24, 25, int(n)),  // fin on the interior edge 24-25
         Eigen::RowVector3i(corner, int(n) + 2, int(n) + 1), Eigen::RowVector3i(corner, int(n) + 1, int(n) + 3);
     FilterReport report;
-    const Points out = apply_filter(p, t, design_second_order({25, 50, 1, 1.1, 0}), {}, &report);
-    EXPECT_TRUE(out.allFinite());
+    const TransferFunction g3 = design_second_order({25, 60, 1, 3, 0});  // Fig. 10: moves it clearly
+    const Points out = apply_filter(p, t, g3, {}, &report);
+    ASSERT_TRUE(out.allFinite());
     EXPECT_EQ(out.row(n + 4), p.row(n + 4));  // unreferenced: stays
+    // The rest is the exact filter of the mesh without that vertex (the cotangent Laplacian
+    // sums over faces, so a fin or a pinch is just more terms).
+    const Eigen::Index used = n + 4;
+    EXPECT_LT(relative_distance_to_dense_filter(out.topRows(used), p.topRows(used), t, g3), 1e-6);
     EXPECT_GT((out - p).rowwise().norm().maxCoeff(), 1e-3);
 }
 
@@ -129,10 +150,20 @@ TEST(MeshInput, DuplicatedVerticesAreReportedAndFilteredAsCut) {
             t(f, k) = int(3 * f + k);
         }
     FilterReport report;
-    apply_filter(p, t, design_second_order({25, 50, 1, 1.1, 0}), {}, &report);
+    const TransferFunction g = design_second_order({25, 50, 1, 1.1, 0});
+    const Points out = apply_filter(p, t, g, {}, &report);
     ASSERT_FALSE(report.warnings.empty());
     EXPECT_NE(report.warnings[0].find("duplicate the position"), std::string::npos) << report.warnings[0];
     EXPECT_NE(report.warnings[0].find(std::to_string(p.rows() - s.points.rows()) + " vertex"), std::string::npos);
+    // What the warning says: the faces are not welded, each is filtered as its own surface,
+    // which is the exact filter of the unwelded mesh (320 separate triangles) ...
+    EXPECT_LT(relative_distance_to_dense_filter(out, p, t, g), 1e-6);
+    // ... and visibly not the filter of the welded sphere.
+    const Points welded = apply_filter(s.points, s.triangles, g);
+    double apart = 0;
+    for (Eigen::Index f = 0; f < t.rows(); ++f)
+        for (int k = 0; k < 3; ++k) apart = std::max(apart, (out.row(3 * f + k) - welded.row(s.triangles(f, k))).norm());
+    EXPECT_GT(apart, 1e-3);
 }
 
 TEST(MeshInput, SelectionSpanningSeveralComponentsIsMeasuredAsOneRegion) {

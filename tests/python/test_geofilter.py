@@ -1,0 +1,135 @@
+"""The Python module: same filters, names and defaults as the filter table, numpy in and out,
+the core's errors as exceptions, and the same result as the command-line tool."""
+import os
+import subprocess
+import tempfile
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import cli_harness as h
+import geofilter
+
+
+def noisy_sphere(levels=3, radius=0.5, seed=1):
+    v, f = h.icosphere(levels, radius)
+    rng = np.random.default_rng(seed)
+    v = v * (1 + 0.02 * rng.standard_normal((len(v), 1)))
+    return np.ascontiguousarray(v), np.asarray(f, dtype=np.int32)
+
+
+def test_every_filter_of_the_table_is_a_function():
+    for name in ["lowpass", "bandpass", "highpass", "notch", "exaggerate", "custom", "polezero", "measure"]:
+        assert name in geofilter.filters
+        assert callable(getattr(geofilter, name))
+
+
+@pytest.mark.parametrize("preset,extra", [("lowpass", []), ("notch", []), ("exaggerate", []), ("polezero", []),
+                                           ("lowpass", ["--radius", "0.2"])])
+def test_results_equal_the_command_line_tool(preset, extra):
+    v, f = noisy_sphere()
+    with tempfile.TemporaryDirectory() as d:
+        source, target = os.path.join(d, "in.off"), os.path.join(d, "out.ply")
+        h.write_off(source, v, f)
+        p = subprocess.run([h.tool(), preset, *extra, source, target], capture_output=True, text=True)
+        assert p.returncode == 0, p.stderr
+        expected = h.read_ply(target).vertices
+    kwargs = {"radius": float(extra[1])} if extra else {}
+    out, report = getattr(geofilter, preset)(v, f, **kwargs)
+    assert out.shape == v.shape and out.dtype == np.float64
+    scale = np.abs(expected).max()
+    assert np.abs(out - expected).max() <= 1e-12 * scale
+    assert report["seconds"]["total"] > 0 and report["log"]
+
+
+def test_radius_sets_s1_and_keeps_the_ratio():
+    v, f = noisy_sphere()
+    _, report = geofilter.lowpass(v, f, radius=0.25)
+    assert report["s1"] == pytest.approx(2 / 0.25 ** 2)
+    assert any("from radius=" in line for line in report["log"])
+
+
+def test_selection_mask_or_indices_measure_the_feature():
+    v, f = noisy_sphere(levels=3, radius=0.5, seed=2)
+    mask = np.ones(len(f), dtype=bool)
+    feature, _ = geofilter.measure(v, f, mask)
+    assert feature["sphere_frequency"] == pytest.approx(2 / 0.5 ** 2, rel=0.05)
+    same, _ = geofilter.measure(v, f, np.arange(len(f)))
+    assert same["radius"] == feature["radius"]
+    out, report = geofilter.lowpass(v, f, selected_faces=mask)
+    assert report["s1"] == pytest.approx(feature["sphere_frequency"])
+
+
+def test_design_is_the_filter_table_design():
+    g = geofilter.design("exaggerate")  # 25, 60, 1, 3, 0.9
+    assert g(0.0) == pytest.approx(1)
+    assert g(25.0) == pytest.approx(3)
+    assert g(60.0) == pytest.approx(1)
+    assert np.allclose(g(np.array([0.0, 25.0])), [1, 3])
+    assert len(g.poles) == 2
+
+
+def test_bad_input_raises_the_core_message_and_leaves_the_arrays_alone():
+    v, f = noisy_sphere()
+    with pytest.raises(ValueError, match=r"shape \(n, 3\)"):
+        geofilter.lowpass(v[:, :2], f)
+    with pytest.raises(ValueError, match=r"shape \(m, 3\)"):
+        geofilter.lowpass(v, f.ravel())
+    with pytest.raises(TypeError, match="integers"):
+        geofilter.lowpass(v, f.astype(float))
+    bad = v.copy()
+    bad[3, 1] = np.nan
+    before = bad.copy()
+    with pytest.raises(geofilter.Error, match="vertex 3 has a NaN"):
+        geofilter.lowpass(bad, f)
+    assert np.array_equal(bad, before, equal_nan=True)
+    wrong = f.copy()
+    wrong[5, 2] = len(v) + 7
+    with pytest.raises(geofilter.Error, match=f"face 5 refers to vertex {len(v) + 7}"):
+        geofilter.lowpass(v, wrong)
+    with pytest.raises(ValueError, match="does not exist"):
+        geofilter.lowpass(v, -np.abs(f) - 1)
+    with pytest.raises(geofilter.Error, match="s1 must be > 0"):
+        geofilter.lowpass(v, f, s1=-1)
+    with pytest.raises(TypeError, match="unknown parameter 'sigma'"):
+        geofilter.lowpass(v, f, sigma=2)
+    with pytest.raises(geofilter.Error, match="no faces are selected"):
+        geofilter.measure(v, f, np.zeros(len(f), dtype=bool))
+
+
+def test_non_contiguous_and_other_dtypes_give_the_same_result():
+    v, f = noisy_sphere()
+    reference, _ = geofilter.notch(v, f)
+    wide = np.zeros((len(v), 6))
+    wide[:, ::2] = v  # a strided view
+    strided, _ = geofilter.notch(wide[:, ::2], f)
+    fortran, _ = geofilter.notch(np.asfortranarray(v), np.asfortranarray(f.astype(np.int64)))
+    single, _ = geofilter.notch(v.astype(np.float32).astype(np.float64), f)
+    assert np.array_equal(strided, reference)
+    assert np.array_equal(fortran, reference)
+    assert single.shape == reference.shape
+
+
+def test_the_solve_releases_the_gil():
+    v, f = h.icosphere(6, 1.0)  # 40,962 vertices: the solve takes a while
+    v, f = np.asarray(v), np.asarray(f)
+    done = threading.Event()
+
+    def work():
+        geofilter.notch(v, f)
+        done.set()
+
+    worker = threading.Thread(target=work)
+    start = time.perf_counter()
+    worker.start()
+    ticks = 0
+    while not done.is_set():
+        ticks += 1
+        time.sleep(0.001)
+    worker.join()
+    elapsed = time.perf_counter() - start
+    # With the GIL held for the whole solve this loop could not run while it lasts.
+    assert elapsed > 0.05
+    assert ticks > 0.3 * elapsed / 0.002
