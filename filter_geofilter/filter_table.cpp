@@ -9,6 +9,26 @@ const char* frequency_note =
     " a sphere-like feature of radius r has s = 2/r^2, a cylinder-like one s = 1/r^2"
     " (so s = 25 is a nose of radius 0.28, s = 630 a bump of radius 0.056).";
 
+// Where the filter acts (issue 11); shared by every filtering entry.
+ParameterSpec region_parameter() {
+    return {param::region, ParameterType::Enum, 0, "region: where to filter",
+            "Whole mesh: every vertex (the paper's filter). Selected faces: only the selected faces, the change fading"
+            " smoothly to zero across a band of width blendWidth around them; everything beyond is left exactly as it"
+            " was. Quality as weight: each vertex takes the fraction w = its vertex quality of the change (0 = untouched,"
+            " 1 = fully filtered; values outside [0, 1] are clamped, NaN refused). The region is filtered as its own"
+            " domain with the untouched vertices around it held fixed.",
+            {"Whole mesh", "Selected faces, blended", "Quality as weight (per vertex)"}};
+}
+
+ParameterSpec blend_width_parameter() {
+    return {param::blend_width, ParameterType::Float, 0, "blendWidth: fade band (0 = auto)",
+            "With region = Selected faces: width, in mesh units along the surface, of the band around the selection"
+            " across which the change fades to zero (with zero slope at both ends, so the surface stays smooth). 0 ="
+            " auto: the radius of the feature at s1 (sqrt(2/s1) sphere-like, sqrt(1/s1) cylinder-like). Not used by the"
+            " other regions.",
+            {}};
+}
+
 std::vector<ParameterSpec> second_order_parameters(const SecondOrderSpec& d) {
     return {
         {param::s1, ParameterType::Float, d.s1, "s1: feature frequency",
@@ -59,6 +79,8 @@ std::vector<ParameterSpec> second_order_parameters(const SecondOrderSpec& d) {
          "Cap on conjugate-gradient iterations per solve; reaching it is reported as an error, the mesh is left as"
          " it was.",
          {}},
+        region_parameter(),
+        blend_width_parameter(),
     };
 }
 
@@ -76,11 +98,13 @@ FilterSpec second_order(const std::string& title, const std::string& python, con
             second_order_parameters(defaults)};
 }
 
-// solver, tolerance, maxIterations, featureShape and fixBoundary, as the second-order entries have them.
+// solver, tolerance, maxIterations, featureShape, fixBoundary, region and blendWidth, as the second-order
+// entries have them.
 void append_shared(std::vector<ParameterSpec>& p) {
     for (const auto& shared : second_order_parameters({}))
         if (shared.name == param::feature_shape || shared.name == param::fix_boundary || shared.name == param::solver ||
-            shared.name == param::tolerance || shared.name == param::max_iterations)
+            shared.name == param::tolerance || shared.name == param::max_iterations || shared.name == param::region ||
+            shared.name == param::blend_width)
             p.push_back(shared);
 }
 

@@ -44,6 +44,7 @@ inline const std::string use_selection = "useSelection", feature_shape = "featur
 inline const std::string feature_corner = "featureCorner";
 inline const std::string fix_boundary = "fixBoundary";
 inline const std::string solver = "solver", tolerance = "tolerance", max_iterations = "maxIterations";
+inline const std::string region = "region", blend_width = "blendWidth";  // issue 11: where the filter acts
 inline const std::string zero_prefix = "z", pole_prefix = "p";  // z1..z4, p1..p4
 inline const std::string cutoff = "cutoff", order = "order", laplace_operator = "operator";
 constexpr int max_pole_zero = 4;

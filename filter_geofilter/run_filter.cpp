@@ -1,4 +1,6 @@
 #include "run_filter.h"
+#include "run_region.h"
+#include "core/ellipsoid_view.h"
 
 #include "core/denoise.h"
 
@@ -235,7 +237,17 @@ RunOutput run_filter(const FilterSpec& spec, const ParameterValues& values, cons
         const FeatureEllipsoid& e = *out.feature;
         out.log.push_back("feature frequency: sphere-like s = 2/r^2 = " + num(e.frequency(FeatureShape::Sphere)) +
                           ", cylinder-like s = 1/r^2 = " + num(e.frequency(FeatureShape::Cylinder)));
-        out.ellipsoid_mesh = ellipsoid_mesh(e);
+        // Shown a little off the surface and never flat, in colour (the adapters).
+        const FeatureEllipsoid shown = shown_ellipsoid(e);
+        out.ellipsoid_mesh = ellipsoid_mesh(shown);
+        std::ostringstream axes;
+        axes.precision(5);
+        for (int k = 0; k < 3; ++k)
+            axes << (k ? "; " : "") << "(" << e.axes(0, k) << ", " << e.axes(1, k) << ", " << e.axes(2, k) << ") radius "
+                 << e.radii[k];
+        out.log.push_back("ellipsoid axes (unit directions, measured radii): " + axes.str() +
+                          "; the layer draws radii " + num(shown.radii[0]) + ", " + num(shown.radii[1]) + ", " +
+                          num(shown.radii[2]) + " (2% larger, at least 5% of the largest) to stand off the surface");
         return out;
     }
 
@@ -259,7 +271,21 @@ RunOutput run_filter(const FilterSpec& spec, const ParameterValues& values, cons
     options.progress = input.progress;
     options.fix_boundary = value_of(spec, values, param::fix_boundary) != 0;
     options.op = out.op;
-    out.points = apply_filter(input.points, input.triangles, out.transfer, options, &out.report);
+    const int region = spec.parameter(param::region) ? choice_of(spec, values, param::region) : 0;
+    if (region == 0) {
+        out.points = apply_filter(input.points, input.triangles, out.transfer, options, &out.report);
+    } else {
+        // The umbrella operator's frequencies are per vertex, not 1/length^2: no feature
+        // radius follows from them, so its blend band must be given.
+        double s_feature = out.op == Operator::Umbrella ? 0.0 : out.s1_used;
+        if (!(s_feature > 0) && spec.kind == FilterKind::PoleZero) {  // the corner the feature would set
+            const int corner = choice_of(spec, values, param::feature_corner);
+            s_feature = value_of(spec, values, (corner < param::max_pole_zero ? param::zero_prefix : param::pole_prefix) +
+                                                   std::to_string(corner % param::max_pole_zero + 1));
+        }
+        out.points = filter_region(region, value_of(spec, values, param::blend_width), input, out.transfer, options,
+                                   s_feature, shape_of(spec, values), out.report, out.log);
+    }
     for (const auto& w : out.report.warnings) out.log.push_back("warning: " + w);
     if (out.report.fixed_vertices > 0)
         out.log.push_back(std::to_string(out.report.fixed_vertices) + " boundary vertices kept in place (fixBoundary)");

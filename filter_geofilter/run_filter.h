@@ -24,6 +24,8 @@ struct RunInput {
     const Triangles& triangles;
     const std::vector<int>& selected_faces;
     ProgressCallback progress;
+    // Per-vertex quality, for region = quality as weight (null or empty: the mesh has none).
+    const std::vector<double>* vertex_quality = nullptr;
 };
 
 struct RunOutput {

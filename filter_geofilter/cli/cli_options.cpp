@@ -345,8 +345,13 @@ CliOptions parse_command_line(const std::vector<std::string>& args) {
         }
     }
 
-    if (o.radius && o.selects_region())
-        throw UsageError("--radius and --select-* both give the feature: use one of them");
+    // With --region selected the selection is the region; --radius or --s1 then gives the
+    // frequency (typed s1, selected region) instead of the selection.
+    const auto region = set_values.find(param::region);
+    const bool selected_region = region != set_values.end() && region->second == 1;
+    if (o.radius && o.selects_region() && !selected_region)
+        throw UsageError("--radius and --select-* both give the feature: use one of them (or --region selected to"
+                         " filter only the selection at the --radius frequency)");
     if (measure && !o.selects_region())
         throw UsageError("measure needs the feature: --select-sphere, --select-box or --select-stored");
 
@@ -361,6 +366,7 @@ CliOptions parse_command_line(const std::vector<std::string>& args) {
 
     o.values = default_values(spec, o.selects_region());
     for (const auto& [name, value] : set_values) o.values[name] = value;
+    if (selected_region && (o.radius || set_values.count(param::s1))) o.values[param::use_selection] = 0;
     return o;
 }
 
@@ -389,6 +395,12 @@ std::string help_text(const FilterSpec* preset) {
               "  --select-box X0,Y0,Z0,X1,Y1,Z1  ... in this box (both repeatable: the union is taken)\n"
               "  --select-stored            the face selection stored in a PLY input (MeshLab: save with\n"
               "                             face Flags); the selection is measured by an ellipsoid\n"
+              "\nwhere to filter (issue 11):\n"
+              "  --region whole|selected|quality  the whole mesh [whole]; only the --select-* faces, fading\n"
+              "                             to untouched across --blend-width; or the PLY input's vertex\n"
+              "                             quality as a weight in [0, 1]. With --region selected, --radius\n"
+              "                             or --s1 gives the frequency and the selection only the region\n"
+              "  --blend-width W            the fade band's width in mesh units [0 = the feature radius]\n"
               "\nother options:\n"
               "  --plot FILE.png            draw G(s) on log-log axes (needs gnuplot)\n"
               "  --overwrite-input          allow OUTPUT to be INPUT (refused otherwise)\n"
@@ -400,7 +412,7 @@ std::string help_text(const FilterSpec* preset) {
               "  geofilter notch --select-sphere 0.1,0.2,0.3,0.05 in.ply out.ply\n"
               "  geofilter custom --s1 10 --s2 25 --G0 1 --G1 30 --Ginf 0 sphere.off big.off\n"
               "  geofilter polezero --zeros 100,400 --poles 50,800 in.obj out.obj\n"
-              "  geofilter measure --select-stored selected.ply\n"
+              "  geofilter measure --select-stored selected.ply\n"              "  geofilter exaggerate --region selected --select-sphere 0,0,1,0.3 in.ply nose.ply\n"
               "\nexit status: 0 done, 1 refused or failed (nothing written), 2 bad command line.\n";
         return os.str();
     }

@@ -152,7 +152,11 @@ int run(const CliOptions& o) {
         bar.update(fraction, stage);
         return interrupted == 0;
     };
-    const RunOutput out = run_filter(spec, values, RunInput{mesh.points(), mesh.triangles(), selected, progress});
+    if (spec.parameter(param::region) && values.at(param::region) == 1 && !o.selects_region())
+        throw Error("--region selected filters only the selected faces: give them with --select-sphere, --select-box"
+                    " or --select-stored");
+    const RunOutput out =
+        run_filter(spec, values, RunInput{mesh.points(), mesh.triangles(), selected, progress, &mesh.vertex_quality()});
     bar.clear();
     if (interrupted) throw Error("interrupted");
     if (out.feature) feature = {true, out.feature->radius};

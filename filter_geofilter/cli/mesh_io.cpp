@@ -169,6 +169,7 @@ struct MeshFile::Data {
     Triangles triangles;
     bool has_stored_flags = false;
     std::vector<int> stored_selection;
+    std::vector<double> vertex_quality;
     std::vector<std::string> notes;
 };
 
@@ -300,6 +301,8 @@ MeshFile MeshFile::read(const std::string& path) {
     d->triangles.resize(Eigen::Index(m.face.size()), 3);
     for (size_t i = 0; i < m.face.size(); ++i)
         for (int k = 0; k < 3; ++k) d->triangles(Eigen::Index(i), k) = int(vcg::tri::Index(m, m.face[i].V(k)));
+    if (d->load_mask & IoMask::IOM_VERTQUALITY)
+        for (const auto& v : m.vert) d->vertex_quality.push_back(v.Q());
     return MeshFile(std::move(d));
 }
 
@@ -308,6 +311,7 @@ const Points& MeshFile::points() const { return data_->points; }
 const Triangles& MeshFile::triangles() const { return data_->triangles; }
 bool MeshFile::has_stored_flags() const { return data_->has_stored_flags; }
 const std::vector<int>& MeshFile::stored_selection() const { return data_->stored_selection; }
+const std::vector<double>& MeshFile::vertex_quality() const { return data_->vertex_quality; }
 const std::vector<std::string>& MeshFile::notes() const { return data_->notes; }
 
 void MeshFile::write(const std::string& path, const Points& points, const std::vector<int>& selected_faces) {

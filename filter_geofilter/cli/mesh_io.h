@@ -38,6 +38,9 @@ public:
     bool has_stored_flags() const;
     // Faces whose stored flags have the selection bit; empty without stored flags.
     const std::vector<int>& stored_selection() const;
+    // Per-vertex quality as the file stores it (PLY "property float quality" on vertices);
+    // empty when the file has none.
+    const std::vector<double>& vertex_quality() const;
     // What reading did that a user should know (welding, triangulated polygons, dropped flags).
     const std::vector<std::string>& notes() const;
 

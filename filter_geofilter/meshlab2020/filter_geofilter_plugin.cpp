@@ -17,6 +17,7 @@ void addEllipsoidLayer(MeshDocument &md, const geofilter::Mesh &e)
 {
 	// Not made current: the user keeps working on the mesh they measured.
 	MeshModel *layer = md.addNewMesh("", "GeoFilter ellipsoid", false);
+	layer->updateDataMask(MeshModel::MM_VERTCOLOR);   // render the colour fillEllipsoid set
 	bridge::fillEllipsoid(layer->cm, e);
 }
 

@@ -116,6 +116,7 @@ std::map<std::string, QVariant> FilterGeoFilterPlugin::applyFilter(const QAction
 			if (out.ellipsoid_mesh) {
 				// Not made current: the user keeps working on the mesh they measured.
 				MeshModel *layer = md.addNewMesh(QString(), "GeoFilter ellipsoid", false);
+				layer->updateDataMask(MeshModel::MM_VERTCOLOR);   // render the colour fillEllipsoid set
 				bridge::fillEllipsoid(layer->cm, *out.ellipsoid_mesh);
 			}
 			if (out.feature) result = measureOutputs(*out.feature);

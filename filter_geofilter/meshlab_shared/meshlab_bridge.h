@@ -109,6 +109,7 @@ struct CoreMesh
 	Triangles triangles;
 	std::vector<int> selectedFaces;
 	std::vector<CMeshO::VertexPointer> vertex;
+	std::vector<double> quality;   // per-vertex quality when the mesh has it (region = quality)
 };
 
 inline CoreMesh copyMesh(CMeshO &cm)
@@ -123,6 +124,8 @@ inline CoreMesh copyMesh(CMeshO &cm)
 	out.points.resize(Eigen::Index(out.vertex.size()), 3);
 	for (size_t i = 0; i < out.vertex.size(); ++i)
 		for (int k = 0; k < 3; ++k) out.points(Eigen::Index(i), k) = out.vertex[i]->P()[k];
+	if (vcg::tri::HasPerVertexQuality(cm))
+		for (const auto *v : out.vertex) out.quality.push_back(double(v->Q()));
 
 	std::vector<int> rows;
 	rows.reserve(cm.face.size() * 3);
@@ -168,7 +171,8 @@ inline FilterRun runOnMesh(const FilterSpec &spec, CMeshO &cm, const RichParamet
 	run.mesh = copyMesh(cm);
 	const ParameterValues values = readValues(spec, par, !run.mesh.selectedFaces.empty());
 	run.out = run_filter(spec, values,
-	                     RunInput{run.mesh.points, run.mesh.triangles, run.mesh.selectedFaces, progressFor(cb, spec)});
+	                     RunInput{run.mesh.points, run.mesh.triangles, run.mesh.selectedFaces, progressFor(cb, spec),
+	                              &run.mesh.quality});
 	return run;
 }
 
@@ -202,6 +206,10 @@ inline void storeFiltered(CMeshO &cm, const CoreMesh &mesh, const Points &filter
 	}
 }
 
+// The ellipsoid layer's per-vertex colour: an orange that stands out against MeshLab's grey
+// meshes. The adapters also mark the layer as having vertex colour, or MeshLab ignores it.
+inline vcg::Color4b ellipsoidColour() { return vcg::Color4b(255, 128, 0, 255); }
+
 // Fills an empty mesh with the fitted ellipsoid (the caller creates the layer: that differs
 // between the APIs).
 inline void fillEllipsoid(CMeshO &cm, const Mesh &e)
@@ -211,6 +219,7 @@ inline void fillEllipsoid(CMeshO &cm, const Mesh &e)
 	for (Eigen::Index i = 0; i < e.points.rows(); ++i, ++vi) {
 		vi->P() = CMeshO::CoordType(CMeshO::ScalarType(e.points(i, 0)), CMeshO::ScalarType(e.points(i, 1)),
 		                            CMeshO::ScalarType(e.points(i, 2)));
+		vi->C() = ellipsoidColour();
 		v.push_back(&*vi);
 	}
 	auto fi = vcg::tri::Allocator<CMeshO>::AddFaces(cm, size_t(e.triangles.rows()));

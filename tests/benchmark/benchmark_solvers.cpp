@@ -4,6 +4,7 @@
 // Every case runs in a forked child so that its peak memory is its own.
 #include "core/filter.h"
 #include "core/laplace.h"
+#include "core/region.h"
 #include "core/shapes.h"
 #include "core/solvers.h"
 #include "core/transfer_function.h"
@@ -159,13 +160,81 @@ std::string fmt(double v, int precision = 2) {
     return os.str();
 }
 
+// Issue 11: a region of ~1% of the mesh's vertices (the faces inside a ball around one
+// vertex), filtered at its own frequency (s1 = 2/R^2, R the ball's radius) with the default
+// band (blendWidth = auto = R), against the same filter on the whole mesh. The region's time
+// includes computing its weight.
+int region_rows(const std::vector<std::function<NamedMesh()>>& makers, const std::string& out_dir) {
+    std::ostringstream table;
+    table << "| mesh | vertices | filter | D: w > 0 (selected) | solved on (D + ring) | whole mesh (s) | region (s) |"
+             " region / whole | outside D unchanged |\n|---|---:|---|---:|---:|---:|---:|---:|---|\n";
+    std::cout << table.str() << std::flush;
+    for (const auto& make : makers) {
+        NamedMesh nm = make();
+        normalise(nm.mesh);
+        const Mesh& m = nm.mesh;
+        const Eigen::RowVector3d centre = m.points.row(m.points.rows() / 3);
+        std::vector<double> d(static_cast<size_t>(m.points.rows()));
+        for (Eigen::Index i = 0; i < m.points.rows(); ++i) d[i] = (m.points.row(i) - centre).norm();
+        std::vector<double> sorted = d;
+        const size_t k = sorted.size() / 100;
+        std::nth_element(sorted.begin(), sorted.begin() + k, sorted.end());
+        const double radius = sorted[k];
+        std::vector<int> faces;
+        for (Eigen::Index f = 0; f < m.triangles.rows(); ++f)
+            if (d[m.triangles(f, 0)] < radius && d[m.triangles(f, 1)] < radius && d[m.triangles(f, 2)] < radius)
+                faces.push_back(static_cast<int>(f));
+        const double s1 = 2 / (radius * radius);
+        struct Preset {
+            const char* name;
+            SecondOrderSpec spec;
+        };
+        for (const Preset& p : {Preset{"band exaggeration", {s1, 2.4 * s1, 1, 3, 0.9}}, Preset{"lowpass", {s1, 2 * s1, 1, 1.1, 0}}}) {
+            const TransferFunction g = design_second_order(p.spec);
+            double whole = 0, region_s = 0;
+            RegionReport region;
+            bool unchanged = true;
+            std::string failure;
+            try {
+                double t0 = now();
+                const Points all = apply_filter(m.points, m.triangles, g);
+                whole = now() - t0;
+                t0 = now();
+                const std::vector<double> w = region_weight(m.points, m.triangles, faces, std::sqrt(2 / s1));
+                const Points part = apply_filter_weighted(m.points, m.triangles, g, w, {}, nullptr, &region);
+                region_s = now() - t0;
+                for (Eigen::Index i = 0; i < m.points.rows(); ++i)
+                    if (w[i] == 0 && !(part.row(i) == m.points.row(i))) unchanged = false;
+            } catch (const std::exception& e) {
+                failure = e.what();
+            }
+            size_t selected_vertices = 0;
+            for (double x : d) selected_vertices += x < radius;
+            std::ostringstream row;
+            row << "| " << nm.name << " | " << m.points.rows() << " | " << p.name << " (s1 = " << fmt(s1, 0) << ") | ";
+            if (!failure.empty()) row << "failed: " << failure << " ||||||\n";
+            else
+                row << region.domain_vertices << " (" << selected_vertices << ") | " << region.submesh_vertices << " | "
+                    << fmt(whole) << " | " << fmt(region_s, 3) << " | " << fmt(region_s / whole, 3) << " | "
+                    << (unchanged ? "yes, bit for bit" : "NO") << " |\n";
+            table << row.str();
+            std::cout << row.str() << std::flush;
+        }
+    }
+    std::string mkdir = "mkdir -p '" + out_dir + "'";
+    if (std::system(mkdir.c_str()) != 0) return 1;
+    std::ofstream(out_dir + "/region.md") << table.str();
+    std::cout << "\nwrote " << out_dir << "/region.md\n";
+    return 0;
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
     std::string out_dir = "benchmark-results", meshes_dir = "meshes";
     double pcg_budget = 60;
     double pcg_full_budget = 900;  // lowpass on meshes below 120k vertices: PCG to convergence
-    bool quick = false;
+    bool quick = false, region_only = false;  // --region: only the issue-11 region rows (a few minutes)
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         if (a == "--out" && i + 1 < argc) out_dir = argv[++i];
@@ -173,9 +242,10 @@ int main(int argc, char** argv) {
         else if (a == "--pcg-seconds" && i + 1 < argc) pcg_budget = std::stod(argv[++i]);
         else if (a == "--pcg-full-seconds" && i + 1 < argc) pcg_full_budget = std::stod(argv[++i]);
         else if (a == "--quick") quick = true;
+        else if (a == "--region") region_only = true;
         else {
             std::cerr << "usage: geofilter_benchmark [--out DIR] [--meshes DIR] [--pcg-seconds S] [--pcg-full-seconds S]"
-                         " [--quick]\n";
+                         " [--quick] [--region]\n";
             return 2;
         }
     }
@@ -217,6 +287,11 @@ int main(int argc, char** argv) {
             for (int l = 0; l < levels; ++l) m = subdivide(m);
             return NamedMesh{"man" + (levels ? " subdivided x" + std::to_string(levels) : std::string()), m};
         });
+
+    if (region_only) {
+        // The ~1M-vertex meshes: the synthetic torus and the subdivided scan (--quick: the small ones).
+        return region_rows(quick ? makers : std::vector<std::function<NamedMesh()>>{makers[3], makers.back()}, out_dir);
+    }
 
     struct Preset {
         const char* name;

@@ -42,6 +42,8 @@ def _tail():
         Param("solver", "RichEnum", 0, 2),
         Param("tolerance", "RichFloat", 1e-10),
         Param("maxIterations", "RichInt", 100000),
+        Param("region", "RichEnum", 0, 3),
+        Param("blendWidth", "RichFloat", 0.0),
     ]
 
 
@@ -114,6 +116,13 @@ def sphere(radius, subdiv):
 def select_faces(condition):
     """filter_func's Conditional Face Selection (muparser: x0..z2, fi, ...)."""
     return Step("Conditional Face Selection", [(Param("condSelect", "RichString", ""), condition)])
+
+
+def vertex_quality(function):
+    """filter_func's Per Vertex Quality Function (muparser: x, y, z, ...), not normalised."""
+    return Step("Per Vertex Quality Function",
+                [(Param("q", "RichString", "vi"), function), (Param("normalize", "RichBool", False), False),
+                 (Param("map", "RichBool", False), False), (Param("onselected", "RichBool", False), False)])
 
 
 def _value_text(p, v):

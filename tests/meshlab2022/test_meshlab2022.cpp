@@ -11,6 +11,7 @@
 // GEOFILTER_TEST_WORKDIR/cases.json, which test_compare_2020.py replays with the 2020.09
 // plugin through meshlabserver.
 
+#include "core/region.h"
 #include "core/shapes.h"
 #include "filter_table.h"
 #include "reference_design.h"
@@ -37,6 +38,7 @@
 #include <cmath>
 #include <cstring>
 #include <functional>
+#include <limits>
 #include <map>
 #include <memory>
 #include <string>
@@ -614,6 +616,119 @@ TEST(Measure, WithoutSelectionIsRefused)
 	MeshDocument md;
 	createSphere(md, 1.0, 3);
 	expectRefusedUnchanged(md, "compute_geofilter_feature_measure", {}, "no faces are selected");
+}
+
+// ---------------------------------------------------------------------------------------
+// Region (issue 11): filter only the selection, with the blend band; the vertex quality as a
+// weight. The math itself is checked against a dense reference in tests/unit/test_region.cpp;
+// here: that the plugin reads region/blendWidth/quality and writes back only inside D.
+
+// The current mesh as the core sees it (double copies of the float coordinates).
+geofilter::Mesh coreCopy(const CMeshO &cm)
+{
+	geofilter::Mesh m;
+	m.points.resize(cm.vn, 3);
+	for (int i = 0; i < cm.vn; ++i)
+		for (int k = 0; k < 3; ++k) m.points(i, k) = double(cm.vert[size_t(i)].cP()[k]);
+	m.triangles.resize(cm.fn, 3);
+	for (int f = 0; f < cm.fn; ++f)
+		for (int k = 0; k < 3; ++k) m.triangles(f, k) = int(vcg::tri::Index(cm, cm.face[size_t(f)].cV(k)));
+	return m;
+}
+
+const Values kRegionDesign = {{"s1", 20.0}, {"s2", 50.0}, {"G0", 1.0}, {"G1", 3.0}, {"Ginf", 0.9},
+                              {"useSelection", false}};
+
+TEST(Region, SelectedCapChangesOnlyTheCapAndItsBand)
+{
+	MeshDocument md;
+	MeshModel &m = createSphere(md, 1.0, 3);
+	ASSERT_GT(selectCap(m.cm, 0.6), 20);
+	const geofilter::Mesh before = coreCopy(m.cm);
+	std::vector<int> selected;
+	for (size_t f = 0; f < m.cm.face.size(); ++f)
+		if (m.cm.face[f].IsS()) selected.push_back(int(f));
+	Values values = kRegionDesign;
+	values["region"] = 1;
+	values["blendWidth"] = 0.4;
+	const FilterRun run = apply(md, "GeoFilter: Band Exaggeration", values);
+	const geofilter::Mesh after = coreCopy(m.cm);
+
+	const std::vector<double> w = geofilter::region_weight(before.points, before.triangles, selected, 0.4);
+	const geofilter::Points expected = geofilter::apply_filter_weighted(
+	    before.points, before.triangles, geofilter::design_second_order({20, 50, 1, 3, 0.9}), w);
+	int outside = 0;
+	double worst = 0;
+	for (Eigen::Index i = 0; i < before.points.rows(); ++i) {
+		if (w[size_t(i)] == 0) {
+			++outside;
+			EXPECT_TRUE(after.points.row(i) == before.points.row(i)) << "vertex " << i << " outside D moved";
+		} else {
+			worst = std::max(worst, (after.points.row(i) - expected.row(i)).norm());
+		}
+	}
+	EXPECT_GT(outside, 300);
+	EXPECT_LT(worst, 1e-6 * 2) << "float write-back of the core's result (bbox diagonal 2)";
+	EXPECT_GT((after.points - before.points).rowwise().norm().maxCoeff(), 0.01) << "the cap must change";
+	bool logged = false;
+	for (const auto &l : run.log) logged = logged || l.find("left exactly as they were") != std::string::npos;
+	EXPECT_TRUE(logged);
+}
+
+TEST(Region, QualityWeightOneIsTheWholeMeshFilterAndZeroChangesNothing)
+{
+	MeshDocument whole, one, zero;
+	createSphere(whole, 1.0, 3);
+	MeshModel &m1 = createSphere(one, 1.0, 3);
+	MeshModel &m0 = createSphere(zero, 1.0, 3);
+	for (auto &v : m1.cm.vert) v.Q() = 1;
+	for (auto &v : m0.cm.vert) v.Q() = 0;
+	Values values = kRegionDesign;
+	apply(whole, "GeoFilter: Band Exaggeration", values);
+	values["region"] = 2;
+	apply(one, "GeoFilter: Band Exaggeration", values);
+	apply(zero, "GeoFilter: Band Exaggeration", values);
+	ASSERT_EQ(whole.mm()->cm.vert.size(), m1.cm.vert.size());
+	for (size_t i = 0; i < m1.cm.vert.size(); ++i)
+		ASSERT_TRUE(whole.mm()->cm.vert[i].cP() == m1.cm.vert[i].cP()) << "vertex " << i;
+	// Coordinates untouched; normals are recomputed from the same coordinates.
+	const geofilter::Mesh a = coreCopy(m0.cm);
+	MeshDocument fresh;
+	const geofilter::Mesh b = coreCopy(createSphere(fresh, 1.0, 3).cm);
+	EXPECT_TRUE(a.points == b.points);
+}
+
+TEST(Region, BadRegionsAreRefusedAndTheMeshIsUnchanged)
+{
+	MeshDocument md;
+	MeshModel &m = createSphere(md, 1.0, 3);
+	Values values = kRegionDesign;
+	values["region"] = 1;
+	expectRefusedUnchanged(md, "GeoFilter: Lowpass", values, "no faces are selected");
+	for (auto &v : m.cm.vert) v.Q() = 0.5;
+	m.cm.vert[5].Q() = std::numeric_limits<float>::quiet_NaN();
+	values["region"] = 2;
+	expectRefusedUnchanged(md, "GeoFilter: Lowpass", values, "NaN");
+}
+
+TEST(Measure, EllipsoidLayerIsColouredAndStandsOffTheSurface)
+{
+	MeshDocument md;
+	MeshModel &m = createSphere(md, 1.0, 3);
+	ASSERT_GT(selectCap(m.cm, 0.5), 0);
+	const FilterRun run = apply(md, byPythonName("compute_geofilter_feature_measure"));
+	const MeshModel *layer = md.getMesh(1);
+	ASSERT_NE(layer, nullptr);
+	EXPECT_TRUE(layer->hasDataMask(MeshModel::MM_VERTCOLOR));
+	for (const auto &v : layer->cm.vert) ASSERT_TRUE(v.cC() == vcg::Color4b(255, 128, 0, 255));
+	bool axes = false;
+	for (const auto &l : run.log) axes = axes || l.find("ellipsoid axes") != std::string::npos;
+	EXPECT_TRUE(axes);
+	// The measured ellipsoid touches the sphere at the cap's apex (z = 1); the shown one passes above it.
+	Scalarm top = -1;
+	for (const auto &v : layer->cm.vert) top = std::max(top, v.cP()[2]);
+	EXPECT_GT(top, Scalarm(1.0));
+	EXPECT_LT(top, Scalarm(1.05));
 }
 
 // ---------------------------------------------------------------------------------------

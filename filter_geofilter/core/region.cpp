@@ -1,0 +1,303 @@
+#include "region.h"
+
+#include "boundary.h"
+#include "mesh_prep.h"
+#include "solvers.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <new>
+#include <numeric>
+#include <queue>
+#include <utility>
+
+namespace geofilter {
+
+double blend_profile(double distance, double width) {
+    if (distance <= 0) return 1;
+    if (!(width > 0) || distance >= width) return 0;
+    const double t = distance / width;
+    return 1 - t * t * (3 - 2 * t);
+}
+
+namespace {
+
+void check_faces(const Triangles& triangles, Eigen::Index vertex_count) {
+    if (triangles.size() > 0 && (triangles.minCoeff() < 0 || triangles.maxCoeff() >= vertex_count))
+        throw Error("a face refers to a vertex that does not exist (index out of range 0.." +
+                    std::to_string(vertex_count - 1) + ")");
+}
+
+// Vertex -> neighbours through edges, compressed rows; an edge shared by two faces appears
+// twice, which Dijkstra does not mind.
+struct Adjacency {
+    std::vector<int> start, neighbour;
+};
+
+Adjacency adjacency(const Triangles& triangles, Eigen::Index vertex_count) {
+    Adjacency a;
+    a.start.assign(static_cast<size_t>(vertex_count) + 1, 0);
+    for (Eigen::Index f = 0; f < triangles.rows(); ++f)
+        for (int k = 0; k < 3; ++k) a.start[static_cast<size_t>(triangles(f, k)) + 1] += 2;
+    std::partial_sum(a.start.begin(), a.start.end(), a.start.begin());
+    a.neighbour.resize(static_cast<size_t>(a.start.back()));
+    std::vector<int> fill(a.start.begin(), a.start.end() - 1);
+    for (Eigen::Index f = 0; f < triangles.rows(); ++f)
+        for (int k = 0; k < 3; ++k) {
+            const int v = triangles(f, k);
+            a.neighbour[static_cast<size_t>(fill[v]++)] = triangles(f, (k + 1) % 3);
+            a.neighbour[static_cast<size_t>(fill[v]++)] = triangles(f, (k + 2) % 3);
+        }
+    return a;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// Union-find labels of the connected parts of a triangle mesh.
+std::vector<int> component_labels(const Triangles& triangles, Eigen::Index vertex_count) {
+    std::vector<int> parent(static_cast<size_t>(vertex_count));
+    std::iota(parent.begin(), parent.end(), 0);
+    std::function<int(int)> root = [&](int v) {
+        while (parent[v] != v) v = parent[v] = parent[parent[v]];
+        return v;
+    };
+    for (Eigen::Index f = 0; f < triangles.rows(); ++f)
+        for (int k = 1; k < 3; ++k) parent[root(triangles(f, 0))] = root(triangles(f, k));
+    std::vector<int> label(parent.size());
+    for (size_t v = 0; v < parent.size(); ++v) label[v] = root(static_cast<int>(v));
+    return label;
+}
+
+void check_options(const TransferFunction& g, const FilterOptions& options) {
+    if (!(options.tolerance > 0 && options.tolerance < 1))
+        throw Error("the solver tolerance must lie in (0, 1) (got " + format_number(options.tolerance) + ")");
+    if (options.max_iterations < 1) throw Error("the iteration cap must be at least 1");
+    for (const auto& p : g.poles)
+        if (p.imag() == 0 && p.real() >= 0)
+            throw Error("unstable filter: a pole lies at s = " + format_number(p.real()) + " >= 0");
+}
+
+// The Dirichlet problem on the prepared sub-mesh: rows with `fixed` stay, the others get
+// h + G(L_D)(p - h). Each connected part is centred on its own area-weighted centroid first:
+// that changes nothing where the part has a fixed vertex (h reproduces constants) and makes
+// a part without one filtered about its centroid, as apply_filter does.
+Eigen::MatrixXd dirichlet_filter(const PreparedMesh& mesh, const std::vector<bool>& fixed, const TransferFunction& g,
+                                 const FilterOptions& options, FilterReport& report, RegionReport& region) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const Eigen::Index n = mesh.points.rows();
+    const Laplacian laplacian = build_laplacian(options.op, mesh.points, mesh.triangles);
+
+    const std::vector<int> label = component_labels(mesh.triangles, n);
+    std::vector<double> area(static_cast<size_t>(n), 0.0);
+    Eigen::MatrixXd moment = Eigen::MatrixXd::Zero(n, 3);
+    std::vector<bool> has_fixed(static_cast<size_t>(n), false);
+    for (Eigen::Index i = 0; i < n; ++i) {
+        area[label[i]] += laplacian.mass[i];
+        moment.row(label[i]) += laplacian.mass[i] * mesh.points.row(i);
+        if (fixed[i]) has_fixed[label[i]] = true;
+    }
+    Eigen::MatrixXd centroid(n, 3);
+    for (Eigen::Index i = 0; i < n; ++i) {
+        centroid.row(i) = moment.row(label[i]) / area[label[i]];
+        if (label[i] == i && !has_fixed[i]) ++region.free_components;
+    }
+    const Eigen::MatrixXd centred = mesh.points - centroid;
+    report.seconds_assembly = seconds_since(t0);
+
+    const Eigen::MatrixXd harmonic = harmonic_extension(laplacian, fixed, centred);
+    std::vector<bool> interior(fixed.size());
+    for (size_t i = 0; i < interior.size(); ++i) interior[i] = !fixed[i];
+    const Eigen::Index free_count = std::count(interior.begin(), interior.end(), true);
+    Eigen::MatrixXd detail_part(free_count, 3);
+    for (Eigen::Index i = 0, k = 0; i < n; ++i)
+        if (interior[i]) detail_part.row(k++) = centred.row(i) - harmonic.row(i);
+
+    const double size = (mesh.points.colwise().maxCoeff() - mesh.points.colwise().minCoeff()).norm();
+    const Laplacian inner = restrict_laplacian(laplacian, interior);
+    const detail::FilterProblem problem{inner, detail_part, g, options, size};
+    const Eigen::MatrixXd filtered_detail = options.solver == Solver::Factored ? detail::solve_factored(problem, report)
+                                                                               : detail::solve_jacobi_pcg(problem, report);
+    Eigen::MatrixXd out = mesh.points;
+    for (Eigen::Index i = 0, k = 0; i < n; ++i)
+        if (interior[i]) out.row(i) = harmonic.row(i) + filtered_detail.row(k++) + centroid.row(i);
+    return out;
+}
+
+} // namespace
+
+std::vector<double> region_weight(const Points& points, const Triangles& triangles, const std::vector<int>& faces,
+                                  double blend_width) {
+    const Eigen::Index n = points.rows();
+    check_faces(triangles, n);
+    if (!(blend_width >= 0) || !std::isfinite(blend_width))
+        throw Error("the blend width must be a finite number >= 0 (got " + format_number(blend_width) + ")");
+    std::vector<double> distance(static_cast<size_t>(n), std::numeric_limits<double>::infinity());
+    using Item = std::pair<double, int>;
+    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+    for (int f : faces) {
+        if (f < 0 || f >= triangles.rows())
+            throw Error("selected face " + std::to_string(f) + " does not exist (the mesh has " +
+                        std::to_string(triangles.rows()) + " faces)");
+        for (int k = 0; k < 3; ++k) {
+            const int v = triangles(f, k);
+            if (distance[v] != 0) queue.emplace(distance[v] = 0, v);
+        }
+    }
+    if (blend_width > 0) {
+        // Dijkstra from the region, stopped at the band's edge: cost follows the band.
+        const Adjacency a = adjacency(triangles, n);
+        while (!queue.empty()) {
+            const auto [d, v] = queue.top();
+            queue.pop();
+            if (d > distance[v]) continue;
+            for (int e = a.start[v]; e < a.start[v + 1]; ++e) {
+                const int u = a.neighbour[static_cast<size_t>(e)];
+                const double du = d + (points.row(u) - points.row(v)).norm();
+                if (du < distance[u] && du < blend_width) queue.emplace(distance[u] = du, u);
+            }
+        }
+    }
+    std::vector<double> weight(static_cast<size_t>(n), 0.0);
+    for (Eigen::Index v = 0; v < n; ++v)
+        if (distance[v] < std::numeric_limits<double>::infinity()) weight[v] = blend_profile(distance[v], blend_width);
+    return weight;
+}
+
+namespace {
+Points apply_filter_weighted_unguarded(const Points& points, const Triangles& triangles, const TransferFunction& g,
+                                       const std::vector<double>& weight, const FilterOptions& options,
+                                       FilterReport* report_out, RegionReport* region_out);
+} // namespace
+
+Points apply_filter_weighted(const Points& points, const Triangles& triangles, const TransferFunction& g,
+                             const std::vector<double>& weight, const FilterOptions& options, FilterReport* report_out,
+                             RegionReport* region_out) {
+    try {
+        return apply_filter_weighted_unguarded(points, triangles, g, weight, options, report_out, region_out);
+    } catch (const std::bad_alloc&) {
+        throw Error("out of memory while filtering a region of a mesh of " + std::to_string(points.rows()) +
+                    " vertices: select a smaller region, close other programs, or simplify the mesh first");
+    }
+}
+
+namespace {
+
+Points apply_filter_weighted_unguarded(const Points& points, const Triangles& triangles, const TransferFunction& g,
+                                       const std::vector<double>& weight, const FilterOptions& options,
+                                       FilterReport* report_out, RegionReport* region_out) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const Eigen::Index n = points.rows();
+    if (static_cast<Eigen::Index>(weight.size()) != n)
+        throw Error("the weight has " + std::to_string(weight.size()) + " values for " + std::to_string(n) + " vertices");
+    for (Eigen::Index v = 0; v < n; ++v)
+        if (!(weight[v] >= 0 && weight[v] <= 1))
+            throw Error("the weight of vertex " + std::to_string(v) + " is " + format_number(weight[v]) +
+                        ": weights must lie in [0, 1]");
+    check_faces(triangles, n);
+    check_options(g, options);
+    // As the whole-mesh filter does, even for vertices the region leaves alone: a result
+    // with such a vertex is no valid mesh either.
+    for (Eigen::Index v = 0; v < n; ++v)
+        if (!points.row(v).allFinite())
+            throw Error("vertex " + std::to_string(v) +
+                        " has a NaN or infinite coordinate: remove or repair it (e.g. MeshLab's Remove Unreferenced/Duplicate"
+                        " Vertices after deleting it)");
+
+    FilterReport report;
+    report.solver = options.solver;
+    RegionReport region;
+    std::vector<bool> in_domain(static_cast<size_t>(n));
+    for (Eigen::Index v = 0; v < n; ++v) in_domain[v] = weight[v] > 0;
+    region.domain_vertices = static_cast<int>(std::count(in_domain.begin(), in_domain.end(), true));
+
+    // The sub-mesh: every face touching D. A vertex of D then keeps all its faces, so its
+    // rows of K and M are those of the whole mesh, and its open-boundary status too.
+    std::vector<int> sub_index(static_cast<size_t>(n), -1);
+    std::vector<int> sub_faces;
+    for (Eigen::Index f = 0; f < triangles.rows(); ++f)
+        if (in_domain[triangles(f, 0)] || in_domain[triangles(f, 1)] || in_domain[triangles(f, 2)]) {
+            sub_faces.push_back(static_cast<int>(f));
+            for (int k = 0; k < 3; ++k) sub_index[triangles(f, k)] = 0;
+        }
+    std::vector<int> sub_vertex;  // ascending, so a sub-mesh of everything is the mesh itself
+    for (Eigen::Index v = 0; v < n; ++v)
+        if (sub_index[v] == 0) {
+            sub_index[v] = static_cast<int>(sub_vertex.size());
+            sub_vertex.push_back(static_cast<int>(v));
+            if (!in_domain[v]) ++region.ring_vertices;
+        }
+    region.submesh_vertices = static_cast<int>(sub_vertex.size());
+
+    Points result = points;
+    if (sub_faces.empty()) {
+        report.warnings.push_back(region.domain_vertices == 0
+                                      ? "the region is empty (every weight is 0): nothing changed"
+                                      : "no face touches the region: nothing changed");
+    } else {
+        Points sub_points(static_cast<Eigen::Index>(sub_vertex.size()), 3);
+        for (size_t i = 0; i < sub_vertex.size(); ++i) sub_points.row(i) = points.row(sub_vertex[i]);
+        Triangles sub_triangles(static_cast<Eigen::Index>(sub_faces.size()), 3);
+        for (size_t f = 0; f < sub_faces.size(); ++f)
+            for (int k = 0; k < 3; ++k) sub_triangles(f, k) = sub_index[triangles(sub_faces[f], k)];
+
+        Points filtered;             // rows of the sub-mesh
+        std::vector<bool> moved;     // sub-mesh rows the filter was allowed to change
+        if (region.ring_vertices == 0) {
+            // D is made of whole components: nothing outside holds it, it is the plain filter.
+            filtered = apply_filter(sub_points, sub_triangles, g, options, &report);
+            region.free_components = -1;  // not counted on this path
+            moved.assign(sub_vertex.size(), true);
+        } else {
+            const PreparedMesh mesh = prepare_mesh(sub_points, sub_triangles);
+            report.warnings = mesh.warnings;
+            std::vector<bool> fixed(mesh.active_vertex.size());
+            for (size_t c = 0; c < fixed.size(); ++c) fixed[c] = !in_domain[sub_vertex[mesh.active_vertex[c]]];
+            const std::vector<bool> on_boundary = options.fix_boundary
+                                                      ? boundary_vertices(mesh.triangles, mesh.points.rows())
+                                                      : std::vector<bool>(fixed.size(), false);
+            for (size_t c = 0; c < fixed.size(); ++c) {
+                if (!fixed[c] && on_boundary[c]) ++report.fixed_vertices;  // as apply_filter counts: the rim only
+                fixed[c] = fixed[c] || on_boundary[c];
+            }
+            report.active_vertices = static_cast<int>(std::count(fixed.begin(), fixed.end(), false));
+            filtered = sub_points;
+            moved.assign(sub_vertex.size(), false);
+            if (report.active_vertices == 0) {
+                report.warnings.push_back("every vertex of the region is held fixed (by its border or fixBoundary):"
+                                          " nothing changed");
+            } else {
+                const Eigen::MatrixXd out = dirichlet_filter(mesh, fixed, g, options, report, region);
+                for (size_t c = 0; c < fixed.size(); ++c)
+                    if (!fixed[c]) {
+                        filtered.row(mesh.active_vertex[c]) = out.row(static_cast<Eigen::Index>(c));
+                        moved[static_cast<size_t>(mesh.active_vertex[c])] = true;
+                    }
+            }
+        }
+        if (!filtered.allFinite())
+            throw Error("the filter produced non-finite coordinates: the mesh is too degenerate for this filter");
+        for (size_t i = 0; i < sub_vertex.size(); ++i) {
+            const int v = sub_vertex[i];
+            if (!moved[i] || !in_domain[v]) continue;
+            // w = 1 takes the filtered point as is: a weight of 1 everywhere is the filter itself.
+            if (weight[v] == 1) result.row(v) = filtered.row(static_cast<Eigen::Index>(i));
+            else result.row(v) = points.row(v) + weight[v] * (filtered.row(static_cast<Eigen::Index>(i)) - points.row(v));
+        }
+        if (!result.allFinite())
+            throw Error("the filter produced non-finite coordinates: the transfer function amplifies this mesh too much");
+    }
+    report.seconds_total = seconds_since(t0);
+    detail::report_progress(options, 1.0, "done");
+    if (report_out) *report_out = std::move(report);
+    if (region_out) *region_out = region;
+    return result;
+}
+
+} // namespace
+
+} // namespace geofilter

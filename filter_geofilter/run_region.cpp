@@ -1,0 +1,78 @@
+#include "run_region.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace geofilter {
+
+namespace {
+
+std::string num(double v) { return format_number(v); }
+
+std::vector<double> weight_from_quality(const RunInput& input, std::vector<std::string>& log) {
+    if (!input.vertex_quality || input.vertex_quality->empty())
+        throw Error("region = quality needs a per-vertex quality and the mesh has none: compute or paint one first"
+                    " (e.g. MeshLab's Colorize by geodesic distance, or Per Vertex Quality Function), or choose another"
+                    " region");
+    const std::vector<double>& q = *input.vertex_quality;
+    if (static_cast<Eigen::Index>(q.size()) != input.points.rows())
+        throw Error("internal: " + std::to_string(q.size()) + " vertex qualities for " +
+                    std::to_string(input.points.rows()) + " vertices");
+    std::vector<double> w(q.size());
+    int clamped = 0;
+    double low = 0, high = 1;
+    for (size_t i = 0; i < q.size(); ++i) {
+        if (std::isnan(q[i]))
+            throw Error("the quality of vertex " + std::to_string(i) + " is NaN: region = quality takes it as a weight"
+                        " in [0, 1]; fix the quality first");
+        low = std::min(low, q[i]);
+        high = std::max(high, q[i]);
+        w[i] = std::clamp(q[i], 0.0, 1.0);
+        if (w[i] != q[i]) ++clamped;
+    }
+    if (clamped > 0)
+        log.push_back("warning: " + std::to_string(clamped) + " vertex qualities outside [0, 1] (from " + num(low) +
+                      " to " + num(high) + ") clamped to [0, 1]");
+    return w;
+}
+
+} // namespace
+
+Points filter_region(int region, double blend_width, const RunInput& input, const TransferFunction& g,
+                     const FilterOptions& options, double s_feature, FeatureShape shape, FilterReport& report,
+                     std::vector<std::string>& log) {
+    std::vector<double> weight;
+    if (region == 1) {
+        if (input.selected_faces.empty())
+            throw Error("region = selected faces but no faces are selected: select the region first (e.g. with the"
+                        " selection tools or Conditional Face Selection), or choose region = whole mesh");
+        if (!std::isfinite(blend_width) || blend_width < 0)
+            throw Error("blendWidth must be a finite number >= 0 (got " + num(blend_width) + "); 0 = auto");
+        std::string how = "as given";
+        if (blend_width == 0) {
+            if (!(s_feature > 0))
+                throw Error("blendWidth = 0 (auto) needs the feature frequency, and none is set: give blendWidth");
+            blend_width = std::sqrt((shape == FeatureShape::Sphere ? 2.0 : 1.0) / s_feature);
+            how = std::string("auto: the feature radius at s = ") + num(s_feature) +
+                  (shape == FeatureShape::Sphere ? ", sqrt(2/s)" : ", sqrt(1/s)");
+        }
+        weight = region_weight(input.points, input.triangles, input.selected_faces, blend_width);
+        log.push_back("region: the " + std::to_string(input.selected_faces.size()) +
+                      " selected faces, fading to untouched across a band of width " + num(blend_width) + " (" + how + ")");
+    } else {
+        weight = weight_from_quality(input, log);
+        log.push_back("region: the vertex quality as the weight (blendWidth is not used: the weight is the blend)");
+    }
+    RegionReport r;
+    Points out = apply_filter_weighted(input.points, input.triangles, g, weight, options, &report, &r);
+    const auto untouched = input.points.rows() - r.domain_vertices;
+    log.push_back("region: " + std::to_string(r.domain_vertices) + " vertices with weight > 0 filtered as one domain, " +
+                  std::to_string(r.ring_vertices) + " around them held fixed (" + std::to_string(r.submesh_vertices) +
+                  " solved on); " + std::to_string(untouched) + " vertices left exactly as they were" +
+                  (r.free_components > 0 ? "; " + std::to_string(r.free_components) +
+                                               " part(s) of the region are whole connected components: filtered alone"
+                                         : std::string()));
+    return out;
+}
+
+} // namespace geofilter

@@ -1,0 +1,18 @@
+// The region parameters (issue 11) turned into a per-vertex weight and the weighted filter:
+// run_filter's part for region != whole mesh, kept apart so that run_filter stays one path.
+#pragma once
+
+#include "core/region.h"
+#include "run_filter.h"
+
+namespace geofilter {
+
+// Filters input with `g` where `values` put the region (region 1: the selected faces and a
+// blend band of blendWidth, auto = the feature radius at s_feature for `shape`; region 2:
+// the vertex quality as the weight). Appends what it did to `log`. Throws Error on a region
+// it cannot use (no selected faces, no or NaN quality), before anything is changed.
+Points filter_region(int region, double blend_width, const RunInput& input, const TransferFunction& g,
+                     const FilterOptions& options, double s_feature, FeatureShape shape, FilterReport& report,
+                     std::vector<std::string>& log);
+
+} // namespace geofilter
