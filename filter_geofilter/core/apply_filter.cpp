@@ -68,6 +68,15 @@ void record_pcg_outcome(const PcgOutcome& outcome, double allowed_error, const s
                     format_number(outcome.error_bound / allowed_error) + " times what the tolerance allows); " + advice);
 }
 
+void check_filter_options(const TransferFunction& g, const FilterOptions& options) {
+    if (!(options.tolerance > 0 && options.tolerance < 1))
+        throw Error("the solver tolerance must lie in (0, 1) (got " + format_number(options.tolerance) + ")");
+    if (options.max_iterations < 1) throw Error("the iteration cap must be at least 1");
+    for (const auto& p : g.poles)
+        if (p.imag() == 0 && p.real() >= 0)
+            throw Error("unstable filter: a pole lies at s = " + format_number(p.real()) + " >= 0");
+}
+
 void report_progress(const FilterOptions& options, double fraction, const std::string& stage) {
     if (options.progress && !options.progress(fraction, stage)) throw Error("cancelled by the user while " + stage);
 }
@@ -88,12 +97,7 @@ namespace {
 Points apply_filter_unguarded(const Points& points, const Triangles& triangles, const TransferFunction& g,
                               const FilterOptions& options, FilterReport* report_out) {
     const auto t0 = std::chrono::steady_clock::now();
-    if (!(options.tolerance > 0 && options.tolerance < 1))
-        throw Error("the solver tolerance must lie in (0, 1) (got " + format_number(options.tolerance) + ")");
-    if (options.max_iterations < 1) throw Error("the iteration cap must be at least 1");
-    for (const auto& p : g.poles)
-        if (p.imag() == 0 && p.real() >= 0)
-            throw Error("unstable filter: a pole lies at s = " + format_number(p.real()) + " >= 0");
+    detail::check_filter_options(g, options);
 
     const double budget = options.memory_budget_bytes > 0 ? options.memory_budget_bytes : available_memory_bytes();
     if (budget > 0 && estimated_filter_bytes(points.rows()) > budget)

@@ -1,16 +1,16 @@
 #include "region.h"
 
 #include "boundary.h"
+#include "components.h"
 #include "mesh_prep.h"
 #include "solvers.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <functional>
 #include <limits>
-#include <new>
 #include <numeric>
+#include <new>
 #include <queue>
 #include <utility>
 
@@ -58,30 +58,6 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// Union-find labels of the connected parts of a triangle mesh.
-std::vector<int> component_labels(const Triangles& triangles, Eigen::Index vertex_count) {
-    std::vector<int> parent(static_cast<size_t>(vertex_count));
-    std::iota(parent.begin(), parent.end(), 0);
-    std::function<int(int)> root = [&](int v) {
-        while (parent[v] != v) v = parent[v] = parent[parent[v]];
-        return v;
-    };
-    for (Eigen::Index f = 0; f < triangles.rows(); ++f)
-        for (int k = 1; k < 3; ++k) parent[root(triangles(f, 0))] = root(triangles(f, k));
-    std::vector<int> label(parent.size());
-    for (size_t v = 0; v < parent.size(); ++v) label[v] = root(static_cast<int>(v));
-    return label;
-}
-
-void check_options(const TransferFunction& g, const FilterOptions& options) {
-    if (!(options.tolerance > 0 && options.tolerance < 1))
-        throw Error("the solver tolerance must lie in (0, 1) (got " + format_number(options.tolerance) + ")");
-    if (options.max_iterations < 1) throw Error("the iteration cap must be at least 1");
-    for (const auto& p : g.poles)
-        if (p.imag() == 0 && p.real() >= 0)
-            throw Error("unstable filter: a pole lies at s = " + format_number(p.real()) + " >= 0");
-}
-
 // The Dirichlet problem on the prepared sub-mesh: rows with `fixed` stay, the others get
 // h + G(L_D)(p - h). Each connected part is centred on its own area-weighted centroid first:
 // that changes nothing where the part has a fixed vertex (h reproduces constants) and makes
@@ -92,7 +68,7 @@ Eigen::MatrixXd dirichlet_filter(const PreparedMesh& mesh, const std::vector<boo
     const Eigen::Index n = mesh.points.rows();
     const Laplacian laplacian = build_laplacian(options.op, mesh.points, mesh.triangles);
 
-    const std::vector<int> label = component_labels(mesh.triangles, n);
+    const std::vector<int> label = connected_components(mesh.triangles, n);
     std::vector<double> area(static_cast<size_t>(n), 0.0);
     Eigen::MatrixXd moment = Eigen::MatrixXd::Zero(n, 3);
     std::vector<bool> has_fixed(static_cast<size_t>(n), false);
@@ -102,10 +78,10 @@ Eigen::MatrixXd dirichlet_filter(const PreparedMesh& mesh, const std::vector<boo
         if (fixed[i]) has_fixed[label[i]] = true;
     }
     Eigen::MatrixXd centroid(n, 3);
-    for (Eigen::Index i = 0; i < n; ++i) {
-        centroid.row(i) = moment.row(label[i]) / area[label[i]];
-        if (label[i] == i && !has_fixed[i]) ++region.free_components;
-    }
+    for (Eigen::Index i = 0; i < n; ++i) centroid.row(i) = moment.row(label[i]) / area[label[i]];
+    const int parts = component_count(label);
+    for (int k = 0; k < parts; ++k)
+        if (!has_fixed[k]) ++region.free_components;
     const Eigen::MatrixXd centred = mesh.points - centroid;
     report.seconds_assembly = seconds_since(t0);
 
@@ -199,7 +175,7 @@ Points apply_filter_weighted_unguarded(const Points& points, const Triangles& tr
             throw Error("the weight of vertex " + std::to_string(v) + " is " + format_number(weight[v]) +
                         ": weights must lie in [0, 1]");
     check_faces(triangles, n);
-    check_options(g, options);
+    detail::check_filter_options(g, options);
     // As the whole-mesh filter does, even for vertices the region leaves alone: a result
     // with such a vertex is no valid mesh either.
     for (Eigen::Index v = 0; v < n; ++v)

@@ -37,6 +37,10 @@ void use_amd_ordering(cholmod_common& common);
 // (`advice` ends the message: what the user can change).
 void record_pcg_outcome(const PcgOutcome& outcome, double allowed_error, const std::string& advice, FilterReport& report);
 
+// Refuses options and transfer functions no solver can run (tolerance, iteration cap, a
+// real pole on s >= 0), before any work is done.
+void check_filter_options(const TransferFunction& g, const FilterOptions& options);
+
 // Throws Error naming the stage if the user cancelled through the progress callback.
 void report_progress(const FilterOptions& options, double fraction, const std::string& stage);
 
