@@ -651,7 +651,7 @@ TEST(Region, SelectedCapChangesOnlyTheCapAndItsBand)
 	Values values = kRegionDesign;
 	values["region"] = 1;
 	values["blendWidth"] = 0.4;
-	const FilterRun run = apply(md, "GeoFilter: Band Exaggeration", values);
+	const FilterRun run = apply(md, byName(QString("GeoFilter: Band Exaggeration")), values);
 	const geofilter::Mesh after = coreCopy(m.cm);
 
 	const std::vector<double> w = geofilter::region_weight(before.points, before.triangles, selected, 0.4);
@@ -684,10 +684,10 @@ TEST(Region, QualityWeightOneIsTheWholeMeshFilterAndZeroChangesNothing)
 	for (auto &v : m1.cm.vert) v.Q() = 1;
 	for (auto &v : m0.cm.vert) v.Q() = 0;
 	Values values = kRegionDesign;
-	apply(whole, "GeoFilter: Band Exaggeration", values);
+	apply(whole, byName(QString("GeoFilter: Band Exaggeration")), values);
 	values["region"] = 2;
-	apply(one, "GeoFilter: Band Exaggeration", values);
-	apply(zero, "GeoFilter: Band Exaggeration", values);
+	apply(one, byName(QString("GeoFilter: Band Exaggeration")), values);
+	apply(zero, byName(QString("GeoFilter: Band Exaggeration")), values);
 	ASSERT_EQ(whole.mm()->cm.vert.size(), m1.cm.vert.size());
 	for (size_t i = 0; i < m1.cm.vert.size(); ++i)
 		ASSERT_TRUE(whole.mm()->cm.vert[i].cP() == m1.cm.vert[i].cP()) << "vertex " << i;
@@ -702,13 +702,14 @@ TEST(Region, BadRegionsAreRefusedAndTheMeshIsUnchanged)
 {
 	MeshDocument md;
 	MeshModel &m = createSphere(md, 1.0, 3);
-	Values values = kRegionDesign;
-	values["region"] = 1;
-	expectRefusedUnchanged(md, "GeoFilter: Lowpass", values, "no faces are selected");
+	// As pymeshlab users call it: python name, lower-case keywords.
+	Kwargs kwargs = {{"s1", 20.0}, {"s2", 50.0}, {"g0", 1.0}, {"g1", 3.0}, {"ginf", 0.9}, {"useselection", false}};
+	kwargs["region"] = 1;
+	expectRefusedUnchanged(md, "apply_geofilter_lowpass", kwargs, "no faces are selected");
 	for (auto &v : m.cm.vert) v.Q() = 0.5;
 	m.cm.vert[5].Q() = std::numeric_limits<float>::quiet_NaN();
-	values["region"] = 2;
-	expectRefusedUnchanged(md, "GeoFilter: Lowpass", values, "NaN");
+	kwargs["region"] = 2;
+	expectRefusedUnchanged(md, "apply_geofilter_lowpass", kwargs, "NaN");
 }
 
 TEST(Measure, EllipsoidLayerIsColouredAndStandsOffTheSurface)
