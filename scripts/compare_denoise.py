@@ -162,7 +162,7 @@ def feature_cases():
     small = spread(truth, 200, 0.1, rng)
     bumpy = add_bumps(truth, c.vertex_normals(truth, tf), truth[small], 0.04, 0.01)
     cases.insert(2, ("torus r_large/r_small=7.5 n=200", truth, bumpy, tf, 0.04, bumpy[small[0]]))
-    bv, bf = load_normalised("bunny00")
+    bv, bf = c.load_normalised("bunny00")
     hb = c.mean_edge_length(bv, bf)
     rng = np.random.default_rng([SEED, 11])
     rs = 4 * hb
@@ -175,15 +175,6 @@ def feature_cases():
 # ---------------------------------------------------------------------------------------------
 # Measures
 
-def load_normalised(name):
-    v, f = c.read_off(os.path.join(c.MESHES_DIR, name + ".off"))
-    lo, hi = v.min(0), v.max(0)
-    return (v - (lo + hi) / 2) / np.linalg.norm(hi - lo), f
-
-
-def write_and_reload(path, v, f):
-    h.write_ply_ascii(path, h.PlyMesh(v, f))
-    return h.read_ply(path).vertices
 
 
 def measures(v, f, truth):
@@ -391,8 +382,8 @@ def main():
             d = os.path.join(work, f"feature{i}")
             os.makedirs(d, exist_ok=True)
             inp = os.path.join(d, "input.ply")
-            write_and_reload(inp, bv, f)
-            truth_v = write_and_reload(os.path.join(d, "truth.ply"), tv, f)
+            c.write_and_reload(inp, bv, f)
+            truth_v = c.write_and_reload(os.path.join(d, "truth.ply"), tv, f)
             truth = (truth_v, c.face_normals(truth_v, f), c.signed_volume(truth_v, f), c.is_closed(f))
             gf = [(f"n = {n}, cutoff radius {k:g} x r_small", butterworth_step(2 / (k * rs) ** 2, n, 1))
                   for n, ks in ((4, (1.0, 1.5, 2.0, 2.5, 3.0, 4.0)), (8, (2.0, 2.5, 3.0))) for k in ks]
@@ -412,10 +403,10 @@ def main():
                 continue
             name = f"{mesh} sigma={k:g}h {direction}"
             print(name, flush=True)
-            v, f = load_normalised(mesh)
+            v, f = c.load_normalised(mesh)
             d = os.path.join(work, name.replace(" ", "_"))
             os.makedirs(d, exist_ok=True)
-            clean = write_and_reload(os.path.join(d, "clean.ply"), v, f)
+            clean = c.write_and_reload(os.path.join(d, "clean.ply"), v, f)
             hm = c.mean_edge_length(clean, f)
             rng = np.random.default_rng([SEED, NOISE_MESHES.index(mesh), int(k * 10), direction == "random"])
             if direction == "normal":
@@ -423,7 +414,7 @@ def main():
             else:
                 noise = k * hm * rng.standard_normal((len(v), 3)) / np.sqrt(3)
             inp = os.path.join(d, "input.ply")
-            noisy = write_and_reload(inp, clean + noise, f)
+            noisy = c.write_and_reload(inp, clean + noise, f)
             hn = c.mean_edge_length(noisy, f)
             truth = (clean, c.face_normals(clean, f), c.signed_volume(clean, f), c.is_closed(f))
             gf = [(f"umbrella, n = 4, sc = {s:g}", butterworth_step(s, 4, 3)) for s in UMBRELLA_CUTOFFS]

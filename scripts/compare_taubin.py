@@ -48,16 +48,6 @@ HC_STEPS = [1, 2, 3, 4, 6, 8, 12, 16, 24]
 TIMING_REPEATS = 2  # the minimum of repeated wall times, against the other jobs on the machine
 
 
-def load_normalised(name):
-    v, f = c.read_off(os.path.join(c.MESHES_DIR, name + ".off"))
-    lo, hi = v.min(0), v.max(0)
-    return (v - (lo + hi) / 2) / np.linalg.norm(hi - lo), f
-
-
-def write_and_reload(path, v, f):
-    """Writes the PLY meshlabserver will read and returns what it will see (float32 coordinates)."""
-    h.write_ply_ascii(path, h.PlyMesh(v, f))
-    return h.read_ply(path).vertices
 
 
 def measures(v, f, clean_v, clean_fn, clean_vol):
@@ -110,7 +100,7 @@ def run_case(work, name, level, clean_ply, clean_v, f, clean_fn, clean_vol, rng)
     # change the shape and would flatter every method.
     noisy_v = clean_v + (level * rng.standard_normal(len(clean_v)))[:, None] * clean_area_n
     noisy = os.path.join(d, "noisy.ply")
-    noisy_v = write_and_reload(noisy, noisy_v, f)
+    noisy_v = c.write_and_reload(noisy, noisy_v, f)
     h_noisy = c.mean_edge_length(noisy_v, f)  # what a user measures: the rule sees only the noisy mesh
     m = lambda v: measures(v, f, clean_v, clean_fn, clean_vol)
     rows = {"noisy": dict(m(noisy_v), setting="input", time=None)}
@@ -282,9 +272,9 @@ def main():
     chosen = [m for m in MESHES if m[0] in args.meshes.split(",")]
     for name, up, view in chosen:
         mi = [m[0] for m in MESHES].index(name)  # seeds do not depend on which meshes are run
-        v, f = load_normalised(name)
+        v, f = c.load_normalised(name)
         clean_ply = os.path.join(work, name + "-clean.ply")
-        clean_v = write_and_reload(clean_ply, v, f)
+        clean_v = c.write_and_reload(clean_ply, v, f)
         clean_fn = c.face_normals(clean_v, f)
         clean_vol = c.signed_volume(clean_v, f)
         mesh_info[name] = {"n": len(v), "h": c.mean_edge_length(clean_v, f), "closed": c.is_closed(f)}

@@ -230,3 +230,16 @@ def distance_to_surface(points, v, f, k=16):
         inside &= np.einsum("...j,...j->...", np.cross(w - u, q - u), n) >= 0
     edge = np.minimum(np.minimum(_segment_distance(p, a, b), _segment_distance(p, b, cc)), _segment_distance(p, cc, a))
     return np.where(inside, np.abs(dist_plane), edge).min(axis=1)
+
+
+def load_normalised(name):
+    """A mesh of meshes/ centred and scaled to unit bounding-box diagonal."""
+    v, f = read_off(os.path.join(MESHES_DIR, name + ".off"))
+    lo, hi = v.min(0), v.max(0)
+    return (v - (lo + hi) / 2) / np.linalg.norm(hi - lo), f
+
+
+def write_and_reload(path, v, f):
+    """Writes the PLY meshlabserver will read and returns what it will see (float32 coordinates)."""
+    h.write_ply_ascii(path, h.PlyMesh(v, f))
+    return h.read_ply(path).vertices
