@@ -1,6 +1,7 @@
 #include "run_filter.h"
 #include "run_region.h"
 #include "core/ellipsoid_view.h"
+#include "core/icosphere.h"
 
 #include "core/denoise.h"
 

@@ -5,7 +5,7 @@
 
 #include "core/feature.h"
 #include "core/filter.h"
-#include "core/shapes.h"
+#include "core/types.h"
 #include "filter_table.h"
 
 #include <map>

@@ -1,58 +1,35 @@
 #include "mesh_io.h"
 
-#include <vcg/complex/complex.h>
-#include <vcg/complex/algorithms/clean.h>
-#include <vcg/complex/algorithms/update/normal.h>
-#include <wrap/io_trimesh/export.h>
-#include <wrap/io_trimesh/import.h>
-
-#include <unistd.h>
-
 #include <algorithm>
+#include <array>
 #include <cctype>
+#include <cerrno>
+#include <climits>
 #include <cstdio>
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
+#include <cmath>
+#include <cstdint>
 #include <cstring>
+#include <fstream>
 #include <iterator>
+#include <limits>
 #include <sstream>
+#include <unordered_map>
+
+// Why these readers and writers are our own rather than a library's (docs/architecture.md,
+// "Mesh files"): the tool must read and write PLY, OBJ, OFF and STL without MeshLab's
+// sources, keep every face (non-manifold ones too) and the vertex order, read MeshLab's PLY
+// face flags and vertex quality, weld STL corners, and refuse a broken file with a reason.
+// Of Debian's libraries, CGAL 5.5's polygon-soup readers keep faces and order, but its PLY
+// soup reader drops custom properties (flags, quality), its OBJ reader accepts an index one
+// past the last vertex and gives no reason for a refusal; OpenMesh drops non-manifold faces;
+// assimp splits and merges vertices. What is left is small enough to own and to fuzz
+// (tests/fuzz/fuzz_mesh_readers.cpp).
 
 namespace geofilter::cli {
 
 namespace {
 
-class CliVertex;
-class CliFace;
-struct CliUsedTypes
-    : public vcg::UsedTypes<vcg::Use<CliVertex>::AsVertexType, vcg::Use<CliFace>::AsFaceType> {};
-// Double precision so that a PLY written by the tool loses nothing the solver computed.
-// Colour, quality and texture coordinates are carried so that filtering a coloured scan
-// does not strip it; BitFlags on faces is where PLY's stored selection arrives.
-class CliVertex : public vcg::Vertex<CliUsedTypes, vcg::vertex::Coord3d, vcg::vertex::Normal3d, vcg::vertex::Color4b,
-                                     vcg::vertex::Qualityd, vcg::vertex::TexCoord2d, vcg::vertex::BitFlags> {};
-class CliFace : public vcg::Face<CliUsedTypes, vcg::face::VertexRef, vcg::face::Normal3d, vcg::face::Color4b,
-                                 vcg::face::Qualityd, vcg::face::BitFlags> {};
-class CliMesh : public vcg::tri::TriMesh<std::vector<CliVertex>, std::vector<CliFace>> {
-public:
-    // This vcglib's ~TriMesh leaves the attributes that importers add (OBJ materials) behind:
-    // LeakSanitizer reports them. Free them here.
-    ~CliMesh() { ClearAttributes(); }
-};
-
-using Importer = vcg::tri::io::Importer<CliMesh>;
-using Exporter = vcg::tri::io::Exporter<CliMesh>;
-using IoMask = vcg::tri::io::Mask;
-
-int export_capability(MeshFormat format) {
-    switch (format) {
-    case MeshFormat::Ply: return vcg::tri::io::ExporterPLY<CliMesh>::GetExportMaskCapability();
-    case MeshFormat::Obj: return vcg::tri::io::ExporterOBJ<CliMesh>::GetExportMaskCapability();
-    case MeshFormat::Off: return vcg::tri::io::ExporterOFF<CliMesh>::GetExportMaskCapability();
-    case MeshFormat::Stl: return vcg::tri::io::ExporterSTL<CliMesh>::GetExportMaskCapability();
-    }
-    return 0;
-}
+constexpr int kSelectedFlag = 0x20;  // vcglib's selection bit, as MeshLab stores face flags
 
 MeshFormat require_format(const std::string& path) {
     const auto format = format_of(path);
@@ -60,118 +37,706 @@ MeshFormat require_format(const std::string& path) {
     return *format;
 }
 
-void require_readable(const std::string& path) {
-    std::ifstream probe(path, std::ios::binary);
-    if (!probe) throw Error("cannot read '" + path + "': no such file or no permission");
-    char c;
-    if (!probe.get(c)) throw Error("cannot read '" + path + "': the file is empty or not a regular file");
+std::string read_whole(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error("cannot read '" + path + "': no such file or no permission");
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (bytes.empty()) throw Error("cannot read '" + path + "': the file is empty or not a regular file");
+    return bytes;
 }
 
-// The vcglib of the MeshLab 2020.09 sources refuses the first vertex of an OBJ face list
-// (its GoodObjIndex rejects the 0 that SplitToken made of "1"; MeshLab issue #791, fixed
-// after that tree was cut): every face around vertex 1 is silently dropped, and Debian's
-// meshlabserver aborts on an assertion. A fixed vcglib accepts index 0 here.
-bool obj_importer_drops_first_vertex() {
-    int index = 0;
-    return !vcg::tri::io::ImporterOBJ<CliMesh>::GoodObjIndex(index, 1);
-}
-
-std::string strip_cr(std::string line) {
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    return line;
-}
-
-// A copy of the OBJ `path` that this importer reads whole: a duplicate of the first vertex is
-// put in front, so positive face indices move up by one (relative ones already count from
-// the end). Material libraries are pointed at the original's folder. Returns the copy's path.
-std::string obj_copy_with_leading_vertex(const std::string& path) {
-    std::ifstream in(path);
-    std::string first_vertex;
-    for (std::string line; std::getline(in, line);)
-        if (line.rfind("v ", 0) == 0 || line.rfind("v\t", 0) == 0) {
-            first_vertex = strip_cr(line);
-            break;
-        }
-    if (first_vertex.empty()) return path;  // no vertices: nothing to lose, let vcglib report it
-    char name[] = "/tmp/geofilter-obj-XXXXXX.obj";
-    const int fd = mkstemps(name, 4);
-    if (fd < 0) throw Error("cannot read '" + path + "': no room for a temporary copy in /tmp");
-    close(fd);
-    std::ofstream out(name);
-    out << first_vertex << '\n';
-    in.clear();
-    in.seekg(0);
-    const std::string folder = std::filesystem::absolute(path).parent_path().string();
+// Splits `text` into lines without '\r', with everything from `comment` on removed.
+std::vector<std::string> lines_of(const std::string& text, char comment) {
+    std::vector<std::string> lines;
+    std::istringstream in(text);
     for (std::string line; std::getline(in, line);) {
-        line = strip_cr(line);
-        std::istringstream words(line);
-        std::string keyword;
-        words >> keyword;
-        if (keyword == "f") {
-            out << 'f';
-            for (std::string corner; words >> corner;) {
-                const size_t slash = corner.find('/');
-                const long index = std::strtol(corner.substr(0, slash).c_str(), nullptr, 10);
-                out << ' ' << (index > 0 ? std::to_string(index + 1) : corner.substr(0, slash))
-                    << (slash == std::string::npos ? "" : corner.substr(slash));
-            }
-            out << '\n';
-        } else if (keyword == "mtllib") {
-            std::string library;
-            std::getline(words >> std::ws, library);
-            out << "mtllib " << (library.empty() || library[0] == '/' ? library : folder + "/" + library) << '\n';
-        } else {
-            out << line << '\n';
+        if (comment) {
+            const size_t c = line.find(comment);
+            if (c != std::string::npos) line.erase(c);
         }
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        lines.push_back(line);
     }
-    if (!out) {
-        std::remove(name);
-        throw Error("cannot read '" + path + "': could not write a temporary copy in /tmp");
-    }
-    return name;
+    return lines;
 }
 
-// Whatever else a file's flag words hold (deleted, visited, border bits of another
-// program's session) must not reach this session: only the selection bit is kept.
-std::vector<int> keep_only_selection_flags(CliMesh& m) {
-    std::vector<int> selected;
-    for (auto& v : m.vert) v.Flags() = 0;
-    for (size_t i = 0; i < m.face.size(); ++i) {
-        const bool was_selected = m.face[i].IsS();
-        m.face[i].Flags() = 0;
-        if (was_selected) {
-            m.face[i].SetS();
-            selected.push_back(int(i));
-        }
-    }
-    return selected;
+bool blank(const std::string& line) {
+    return std::all_of(line.begin(), line.end(), [](unsigned char c) { return std::isspace(c); });
 }
 
-void save(CliMesh& m, const std::string& path, int mask) {
-    const MeshFormat format = require_format(path);
-    mask &= export_capability(format);
-    if (mask & (IoMask::IOM_VERTNORMAL | IoMask::IOM_FACENORMAL)) {
-        // The normals read with the input describe the shape before filtering.
-        vcg::tri::UpdateNormal<CliMesh>::PerFaceNormalized(m);
-        vcg::tri::UpdateNormal<CliMesh>::PerVertexAngleWeighted(m);
+std::string full_precision(double v) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%.17g", v);
+    return buffer;
+}
+
+// Area-weighted vertex normals (unit; zero where no face has area), for the formats that
+// store normals: the ones read with the input describe the shape before filtering.
+Points vertex_normals(const Points& p, const Triangles& t) {
+    Points n = Points::Zero(p.rows(), 3);
+    for (Eigen::Index f = 0; f < t.rows(); ++f) {
+        const Eigen::RowVector3d a = p.row(t(f, 0)), b = p.row(t(f, 1)), c = p.row(t(f, 2));
+        const Eigen::RowVector3d fn = (b - a).cross(c - a);
+        for (int k = 0; k < 3; ++k) n.row(t(f, k)) += fn;
     }
-    const int err = Exporter::Save(m, path.c_str(), mask);
-    if (err != 0) throw Error("cannot write '" + path + "': " + Exporter::ErrorMsg(err));
+    for (Eigen::Index i = 0; i < n.rows(); ++i)
+        if (n.row(i).norm() > 0) n.row(i).normalize();
+    return n;
+}
+
+Eigen::RowVector3d face_normal(const Points& p, const Triangles& t, Eigen::Index f) {
+    const Eigen::RowVector3d a = p.row(t(f, 0)), b = p.row(t(f, 1)), c = p.row(t(f, 2));
+    const Eigen::RowVector3d n = (b - a).cross(c - a);
+    return n.norm() > 0 ? Eigen::RowVector3d(n.normalized()) : n;
+}
+
+// Corners of polygons as triangles: a fan from each polygon's first corner. `source_face`
+// tells, per triangle, which polygon of the file it came from (its attributes follow it).
+struct FaceList {
+    std::vector<std::array<int, 3>> triangles;
+    std::vector<size_t> source_face;
+    size_t polygons = 0, too_small = 0;
+
+    void add(const std::vector<long>& corners, size_t face) {
+        if (corners.size() < 3) {
+            ++too_small;
+            return;
+        }
+        if (corners.size() > 3) ++polygons;
+        for (size_t k = 1; k + 1 < corners.size(); ++k) {
+            triangles.push_back({int(corners[0]), int(corners[k]), int(corners[k + 1])});
+            source_face.push_back(face);
+        }
+    }
+};
+
+// ---------------------------------------------------------------------------------------------
+// PLY
+
+enum class PlyType { Int8, Uint8, Int16, Uint16, Int32, Uint32, Float32, Float64 };
+
+std::optional<PlyType> ply_type(const std::string& name) {
+    static const std::pair<const char*, PlyType> names[] = {
+        {"char", PlyType::Int8},     {"int8", PlyType::Int8},      {"uchar", PlyType::Uint8},   {"uint8", PlyType::Uint8},
+        {"short", PlyType::Int16},   {"int16", PlyType::Int16},    {"ushort", PlyType::Uint16}, {"uint16", PlyType::Uint16},
+        {"int", PlyType::Int32},     {"int32", PlyType::Int32},    {"uint", PlyType::Uint32},   {"uint32", PlyType::Uint32},
+        {"float", PlyType::Float32}, {"float32", PlyType::Float32}, {"double", PlyType::Float64}, {"float64", PlyType::Float64}};
+    for (const auto& [n, t] : names)
+        if (name == n) return t;
+    return std::nullopt;
+}
+
+const char* ply_type_name(PlyType t) {
+    static const char* names[] = {"char", "uchar", "short", "ushort", "int", "uint", "float", "double"};
+    return names[int(t)];
+}
+
+size_t ply_size(PlyType t) {
+    static const size_t sizes[] = {1, 1, 2, 2, 4, 4, 4, 8};
+    return sizes[int(t)];
+}
+
+struct PlyProperty {
+    std::string name;
+    PlyType type = PlyType::Float32;
+    bool is_list = false;
+    PlyType count_type = PlyType::Uint8;
+};
+
+struct PlyElement {
+    std::string name;
+    size_t count = 0;
+    std::vector<PlyProperty> properties;
+};
+
+enum class PlyEncoding { Ascii, BinaryLittle, BinaryBig };
+
+[[noreturn]] void ply_fail(const std::string& path, const std::string& why) {
+    throw Error("cannot read '" + path + "' as PLY: " + why);
+}
+
+// Values in the order the file holds them; every PLY scalar is exact as a double.
+class PlyBody {
+public:
+    PlyBody(const std::string& bytes, size_t start, PlyEncoding encoding, const std::string& path)
+        : bytes_(bytes), pos_(start), encoding_(encoding), path_(path) {}
+
+    double scalar(PlyType t) {
+        if (encoding_ == PlyEncoding::Ascii) return ascii_number();
+        const size_t n = ply_size(t);
+        if (bytes_.size() - pos_ < n) fail("the file ends before its last element");
+        unsigned char raw[8];
+        std::memcpy(raw, bytes_.data() + pos_, n);
+        pos_ += n;
+        if (encoding_ == PlyEncoding::BinaryBig) std::reverse(raw, raw + n);
+        switch (t) {
+        case PlyType::Int8: return double(int8_t(raw[0]));
+        case PlyType::Uint8: return double(raw[0]);
+        case PlyType::Int16: { int16_t v; std::memcpy(&v, raw, 2); return v; }
+        case PlyType::Uint16: { uint16_t v; std::memcpy(&v, raw, 2); return v; }
+        case PlyType::Int32: { int32_t v; std::memcpy(&v, raw, 4); return v; }
+        case PlyType::Uint32: { uint32_t v; std::memcpy(&v, raw, 4); return v; }
+        case PlyType::Float32: { float v; std::memcpy(&v, raw, 4); return v; }
+        case PlyType::Float64: { double v; std::memcpy(&v, raw, 8); return v; }
+        }
+        return 0;
+    }
+
+    // The smallest number of bytes one item of `e` can take: a count that cannot fit in
+    // what is left of the file is refused before anything is allocated for it.
+    size_t min_item_bytes(const PlyElement& e) const {
+        size_t n = 0;
+        for (const auto& p : e.properties)
+            n += encoding_ == PlyEncoding::Ascii ? 1 : ply_size(p.is_list ? p.count_type : p.type);
+        return n;
+    }
+    size_t remaining() const { return bytes_.size() - pos_; }
+
+    [[noreturn]] void fail(const std::string& why) const { ply_fail(path_, why); }
+
+private:
+    double ascii_number() {
+        while (pos_ < bytes_.size() && std::isspace(static_cast<unsigned char>(bytes_[pos_]))) ++pos_;
+        const size_t start = pos_;
+        while (pos_ < bytes_.size() && !std::isspace(static_cast<unsigned char>(bytes_[pos_]))) ++pos_;
+        if (start == pos_) fail("the file ends before its last element");
+        const std::string word = bytes_.substr(start, pos_ - start);
+        char* end = nullptr;
+        const double v = std::strtod(word.c_str(), &end);
+        if (*end != '\0') fail("'" + word + "' is not a number");
+        return v;
+    }
+
+    const std::string& bytes_;
+    size_t pos_;
+    PlyEncoding encoding_;
+    const std::string& path_;
+};
+
+// An ASCII PLY may hold any number where an integer type is declared: out of range (or
+// NaN) must not reach a cast, whose result would be undefined.
+template <typename Int>
+Int clamped(double v) {
+    if (!(v == v)) return 0;
+    return Int(std::clamp(v, double(std::numeric_limits<Int>::min()), double(std::numeric_limits<Int>::max())));
+}
+
+int property_index(const PlyElement& e, const std::string& name) {
+    for (size_t i = 0; i < e.properties.size(); ++i)
+        if (e.properties[i].name == name) return int(i);
+    return -1;
 }
 
 } // namespace
 
-struct MeshFile::Data {
-    MeshFormat format;
-    CliMesh mesh;
-    int load_mask = 0;
+// What a PLY element carries besides what the tool computes (positions, indices, normals,
+// flags), written back with the type it was read with: colours, quality, texture
+// coordinates, anything a scanner added.
+struct CarriedColumns {
+    std::vector<PlyProperty> properties;
+    std::vector<std::vector<double>> values;  // per property, per item
+};
+
+// Everything a read file gives the tool (MeshFile::Data, visible to the readers below).
+struct FileContents {
+    MeshFormat format = MeshFormat::Ply;
     Points points;
     Triangles triangles;
     bool has_stored_flags = false;
     std::vector<int> stored_selection;
     std::vector<double> vertex_quality;
     std::vector<std::string> notes;
+    // Written back only in the format that was read.
+    bool vertex_normals = false, face_normals = false;
+    CarriedColumns vertex_columns, face_columns;        // PLY
+    std::string off_keyword = "OFF";                     // OFF: which optional fields
+    std::vector<std::string> vertex_tail, face_tail;     // OFF: colours, texture coordinates
 };
+
+struct MeshFile::Data : FileContents {};
+
+namespace {
+
+using Data = FileContents;
+
+void check_indices(const FaceList& faces, size_t vertices, const std::string& what) {
+    for (size_t t = 0; t < faces.triangles.size(); ++t)
+        for (int v : faces.triangles[t])
+            if (v < 0 || size_t(v) >= vertices)
+                throw Error(what + ": face " + std::to_string(faces.source_face[t]) + " uses vertex " + std::to_string(v) +
+                            " of " + std::to_string(vertices));
+}
+
+void store_faces(Data& d, const FaceList& faces, const std::string& format_label) {
+    d.triangles.resize(Eigen::Index(faces.triangles.size()), 3);
+    for (size_t t = 0; t < faces.triangles.size(); ++t)
+        for (int k = 0; k < 3; ++k) d.triangles(Eigen::Index(t), k) = faces.triangles[t][size_t(k)];
+    if (faces.polygons > 0)
+        d.notes.push_back("the file has polygons: " + std::to_string(faces.polygons) + " of its " + format_label +
+                          " faces were split into triangles (a fan from each one's first corner), and triangles are written");
+    if (faces.too_small > 0)
+        d.notes.push_back("skipped " + std::to_string(faces.too_small) + " faces with fewer than three corners");
+}
+
+void read_ply(Data& d, const std::string& path, const std::string& bytes) {
+    const auto fail = [&](const std::string& why) { ply_fail(path, why); };
+    const size_t end_header = bytes.find("end_header");
+    if (bytes.compare(0, 3, "ply") != 0 || end_header == std::string::npos) fail("no 'ply' ... 'end_header' header");
+    const size_t body_start = bytes.find('\n', end_header);
+    if (body_start == std::string::npos) fail("nothing after 'end_header'");
+    std::optional<PlyEncoding> encoding;
+    std::vector<PlyElement> elements;
+    for (const std::string& line : lines_of(bytes.substr(0, end_header), 0)) {
+        std::istringstream words(line);
+        std::string keyword;
+        words >> keyword;
+        if (keyword == "format") {
+            std::string name;
+            words >> name;
+            if (name == "ascii") encoding = PlyEncoding::Ascii;
+            else if (name == "binary_little_endian") encoding = PlyEncoding::BinaryLittle;
+            else if (name == "binary_big_endian") encoding = PlyEncoding::BinaryBig;
+            else fail("unknown format '" + name + "'");
+        } else if (keyword == "element") {
+            PlyElement e;
+            long long count = -1;
+            if (!(words >> e.name >> count) || count < 0) fail("bad line '" + line + "'");
+            e.count = size_t(count);
+            elements.push_back(e);
+        } else if (keyword == "property") {
+            if (elements.empty()) fail("a property before any element");
+            PlyProperty p;
+            std::string type;
+            words >> type;
+            if (type == "list") {
+                std::string count_type;
+                words >> count_type >> type;
+                const auto ct = ply_type(count_type);
+                if (!ct || *ct == PlyType::Float32 || *ct == PlyType::Float64) fail("bad list count type in '" + line + "'");
+                p.is_list = true;
+                p.count_type = *ct;
+            }
+            const auto t = ply_type(type);
+            if (!t || !(words >> p.name)) fail("bad line '" + line + "'");
+            p.type = *t;
+            elements.back().properties.push_back(p);
+        } else if (!keyword.empty() && keyword != "ply" && keyword != "comment" && keyword != "obj_info") {
+            fail("unknown header line '" + line + "'");
+        }
+    }
+    if (!encoding) fail("no 'format' line");
+
+    PlyBody body(bytes, body_start + 1, *encoding, path);
+    bool have_vertices = false, have_faces = false;
+    FaceList faces;
+    std::vector<std::vector<double>> face_values;  // per file face, the carried face columns
+    std::vector<int> face_flags;
+    for (const PlyElement& e : elements) {
+        const size_t min_bytes = body.min_item_bytes(e);
+        if (min_bytes > 0 && e.count > body.remaining() / min_bytes)
+            fail("element '" + e.name + "' claims " + std::to_string(e.count) + " items, more than the file holds");
+        const bool is_vertex = e.name == "vertex" && !have_vertices;
+        const bool is_face = e.name == "face" && !have_faces;
+        const int x = property_index(e, "x"), y = property_index(e, "y"), z = property_index(e, "z");
+        int indices = property_index(e, "vertex_indices");
+        if (indices < 0) indices = property_index(e, "vertex_index");
+        const int flags = property_index(e, "flags");
+        const int nx = property_index(e, "nx");
+        if (is_vertex && (x < 0 || y < 0 || z < 0 || e.properties[size_t(x)].is_list || e.properties[size_t(y)].is_list ||
+                          e.properties[size_t(z)].is_list))
+            fail("its vertices have no x, y, z");
+        if (is_face && (indices < 0 || !e.properties[size_t(indices)].is_list)) fail("its faces have no vertex_indices list");
+        if (!is_vertex && !is_face && e.count > 0)
+            d.notes.push_back("dropped the PLY element '" + e.name + "' (" + std::to_string(e.count) + " items): only vertices and faces are read");
+
+        // Which properties go back into the file as they came.
+        std::vector<int> carried;
+        CarriedColumns& columns = is_vertex ? d.vertex_columns : d.face_columns;
+        for (size_t i = 0; i < e.properties.size(); ++i) {
+            const PlyProperty& p = e.properties[i];
+            const bool computed = p.name == "x" || p.name == "y" || p.name == "z" || p.name == "nx" || p.name == "ny" ||
+                                  p.name == "nz" || int(i) == indices || p.name == "flags";
+            if ((is_vertex || is_face) && !computed && !p.is_list) {
+                carried.push_back(int(i));
+                columns.properties.push_back(p);
+            } else if ((is_vertex || is_face) && !computed) {
+                d.notes.push_back("dropped the list property '" + p.name + "' of the PLY " + e.name + "s");
+            }
+        }
+        if (is_vertex) {
+            have_vertices = true;
+            d.points.resize(Eigen::Index(e.count), 3);
+            d.vertex_normals = nx >= 0;
+            columns.values.assign(carried.size(), std::vector<double>(e.count));
+        }
+        if (is_face) {
+            have_faces = true;
+            d.face_normals = nx >= 0;
+            d.has_stored_flags = flags >= 0;
+        }
+        if (e.properties.empty()) continue;  // nothing to read, however many it claims
+
+        std::vector<double> item(e.properties.size());
+        std::vector<long> corners;
+        for (size_t n = 0; n < e.count; ++n) {
+            for (size_t i = 0; i < e.properties.size(); ++i) {
+                const PlyProperty& p = e.properties[i];
+                if (!p.is_list) {
+                    item[i] = body.scalar(p.type);
+                    continue;
+                }
+                const double count = body.scalar(p.count_type);
+                if (!(count >= 0) || body.remaining() / (*encoding == PlyEncoding::Ascii ? 1 : ply_size(p.type)) < count)
+                    fail("a list of " + full_precision(count) + " items does not fit in the file");
+                corners.clear();
+                for (size_t k = 0; k < size_t(count); ++k) {
+                    const double v = body.scalar(p.type);
+                    if (int(i) == indices) {
+                        if (!(v >= 0 && v < 2147483647.0)) fail("face " + std::to_string(n) + " has the index " + full_precision(v));
+                        corners.push_back(long(v));
+                    }
+                }
+            }
+            if (is_vertex) {
+                d.points.row(Eigen::Index(n)) << item[size_t(x)], item[size_t(y)], item[size_t(z)];
+                for (size_t c = 0; c < carried.size(); ++c) columns.values[c][n] = item[size_t(carried[c])];
+            } else if (is_face) {
+                faces.add(corners, n);
+                std::vector<double> values;
+                for (int c : carried) values.push_back(item[size_t(c)]);
+                face_values.push_back(values);
+                if (flags >= 0) face_flags.push_back(int(clamped<int32_t>(item[size_t(flags)])));
+            }
+        }
+    }
+    if (!have_vertices) fail("it has no vertex element");
+    check_indices(faces, size_t(d.points.rows()), "cannot read '" + path + "' as PLY");
+    store_faces(d, faces, "PLY");
+
+    // Face values follow each triangle back to its polygon.
+    d.face_columns.values.assign(d.face_columns.properties.size(), std::vector<double>(faces.triangles.size()));
+    for (size_t t = 0; t < faces.triangles.size(); ++t)
+        for (size_t c = 0; c < d.face_columns.properties.size(); ++c)
+            d.face_columns.values[c][t] = face_values[faces.source_face[t]][c];
+    for (size_t c = 0; c < d.vertex_columns.properties.size(); ++c)
+        if (d.vertex_columns.properties[c].name == "quality") d.vertex_quality = d.vertex_columns.values[c];
+    // Whatever else a file's flag words hold (deleted, visited, border bits of another
+    // program's session) must not reach this session: only the selection bit is kept.
+    if (d.has_stored_flags)
+        for (size_t t = 0; t < faces.triangles.size(); ++t)
+            if (face_flags[faces.source_face[t]] & kSelectedFlag) d.stored_selection.push_back(int(t));
+}
+
+template <typename T>
+void put(std::string& out, T value) {
+    char raw[sizeof(T)];
+    std::memcpy(raw, &value, sizeof(T));  // little-endian machines only, as Debian's amd64 and arm64 are
+    out.append(raw, sizeof(T));
+}
+
+void put_as(std::string& out, PlyType t, double v) {
+    switch (t) {
+    case PlyType::Int8: put(out, clamped<int8_t>(v)); break;
+    case PlyType::Uint8: put(out, clamped<uint8_t>(v)); break;
+    case PlyType::Int16: put(out, clamped<int16_t>(v)); break;
+    case PlyType::Uint16: put(out, clamped<uint16_t>(v)); break;
+    case PlyType::Int32: put(out, clamped<int32_t>(v)); break;
+    case PlyType::Uint32: put(out, clamped<uint32_t>(v)); break;
+    case PlyType::Float32: put(out, float(v)); break;
+    case PlyType::Float64: put(out, v); break;
+    }
+}
+
+// Binary little-endian PLY: positions in double so that nothing the solver computed is lost.
+std::string ply_text(const Data* d, const Points& p, const Triangles& t, const std::vector<int>& selected) {
+    const bool vn = d && d->vertex_normals, fn = d && d->face_normals;
+    std::string out = "ply\nformat binary_little_endian 1.0\ncomment written by geofilter\n";
+    out += "element vertex " + std::to_string(p.rows()) + "\nproperty double x\nproperty double y\nproperty double z\n";
+    if (vn) out += "property float nx\nproperty float ny\nproperty float nz\n";
+    if (d)
+        for (const auto& c : d->vertex_columns.properties) out += std::string("property ") + ply_type_name(c.type) + " " + c.name + "\n";
+    out += "element face " + std::to_string(t.rows()) + "\nproperty list uchar int vertex_indices\n";
+    if (!selected.empty()) out += "property int flags\n";
+    if (fn) out += "property float nx\nproperty float ny\nproperty float nz\n";
+    if (d)
+        for (const auto& c : d->face_columns.properties) out += std::string("property ") + ply_type_name(c.type) + " " + c.name + "\n";
+    out += "end_header\n";
+    const Points normals = vn ? vertex_normals(p, t) : Points();
+    for (Eigen::Index i = 0; i < p.rows(); ++i) {
+        for (int k = 0; k < 3; ++k) put(out, p(i, k));
+        if (vn)
+            for (int k = 0; k < 3; ++k) put(out, float(normals(i, k)));
+        if (d)
+            for (size_t c = 0; c < d->vertex_columns.properties.size(); ++c)
+                put_as(out, d->vertex_columns.properties[c].type, d->vertex_columns.values[c][size_t(i)]);
+    }
+    std::vector<bool> is_selected(size_t(t.rows()), false);
+    for (int f : selected) is_selected[size_t(f)] = true;
+    for (Eigen::Index f = 0; f < t.rows(); ++f) {
+        put(out, uint8_t(3));
+        for (int k = 0; k < 3; ++k) put(out, int32_t(t(f, k)));
+        if (!selected.empty()) put(out, int32_t(is_selected[size_t(f)] ? kSelectedFlag : 0));
+        if (fn) {
+            const Eigen::RowVector3d n = face_normal(p, t, f);
+            for (int k = 0; k < 3; ++k) put(out, float(n(k)));
+        }
+        if (d)
+            for (size_t c = 0; c < d->face_columns.properties.size(); ++c)
+                put_as(out, d->face_columns.properties[c].type, d->face_columns.values[c][size_t(f)]);
+    }
+    return out;
+}
+
+// ---------------------------------------------------------------------------------------------
+// OBJ: positions and faces. Texture coordinates, normals and materials index their own
+// lists per corner, which a shared-vertex mesh cannot keep: they are dropped, with a note.
+
+// "12", "12/3", "12//4", "12/3/4": the position index, 0-based; negative counts back from
+// the last vertex read so far.
+long obj_corner(const std::string& corner, size_t vertices_so_far, const std::string& where) {
+    char* end = nullptr;
+    const long i = std::strtol(corner.c_str(), &end, 10);
+    if (end == corner.c_str() || (*end != '\0' && *end != '/') || i == 0 || i > INT_MAX || i < -INT_MAX)
+        throw Error(where + ": bad face corner '" + corner + "'");
+    return i > 0 ? i - 1 : long(vertices_so_far) + i;
+}
+
+void read_obj(Data& d, const std::string& path, const std::string& bytes) {
+    std::vector<Eigen::RowVector3d> points;
+    FaceList faces;
+    size_t face_count = 0;
+    std::vector<std::string> dropped;
+    const auto lines = lines_of(bytes, '#');
+    for (size_t l = 0; l < lines.size(); ++l) {
+        const std::string where = "cannot read '" + path + "' as OBJ: line " + std::to_string(l + 1);
+        std::istringstream words(lines[l]);
+        std::string keyword;
+        if (!(words >> keyword)) continue;
+        if (keyword == "v") {
+            double x, y, z;
+            if (!(words >> x >> y >> z)) throw Error(where + ": a vertex needs x y z");
+            points.emplace_back(x, y, z);
+        } else if (keyword == "f") {
+            std::vector<long> corners;
+            for (std::string corner; words >> corner;) corners.push_back(obj_corner(corner, points.size(), where));
+            faces.add(corners, face_count++);
+        } else if ((keyword == "vt" || keyword == "vn" || keyword == "usemtl" || keyword == "mtllib" || keyword == "l") &&
+                   std::find(dropped.begin(), dropped.end(), keyword) == dropped.end()) {
+            dropped.push_back(keyword);
+        }
+    }
+    if (points.empty()) throw Error("cannot read '" + path + "' as OBJ: it has no vertices ('v' lines)");
+    check_indices(faces, points.size(), "cannot read '" + path + "' as OBJ");
+    d.points.resize(Eigen::Index(points.size()), 3);
+    for (size_t i = 0; i < points.size(); ++i) d.points.row(Eigen::Index(i)) = points[i];
+    store_faces(d, faces, "OBJ");
+    if (!dropped.empty()) {
+        std::string list;
+        for (const auto& k : dropped) list += (list.empty() ? "'" : ", '") + k + "'";
+        d.notes.push_back("OBJ " + list + " lines are not carried: positions and faces are written");
+    }
+}
+
+std::string obj_text(const Points& p, const Triangles& t) {
+    std::string out = "# written by geofilter\n";
+    for (Eigen::Index i = 0; i < p.rows(); ++i)
+        out += "v " + full_precision(p(i, 0)) + " " + full_precision(p(i, 1)) + " " + full_precision(p(i, 2)) + "\n";
+    for (Eigen::Index f = 0; f < t.rows(); ++f)
+        out += "f " + std::to_string(t(f, 0) + 1) + " " + std::to_string(t(f, 1) + 1) + " " + std::to_string(t(f, 2) + 1) + "\n";
+    return out;
+}
+
+// ---------------------------------------------------------------------------------------------
+// OFF, ASCII: "[ST][C][N]OFF"; a vertex line is x y z [normal] [colour] [texture], a face
+// line n i1..in [colour]. Colours and texture coordinates are carried as the file wrote
+// them, normals recomputed.
+
+std::vector<std::string> words_of(const std::string& line) {
+    std::istringstream in(line);
+    return {std::istream_iterator<std::string>(in), std::istream_iterator<std::string>()};
+}
+
+std::string joined(const std::vector<std::string>& words, size_t from) {
+    std::string out;
+    for (size_t i = from; i < words.size(); ++i) out += " " + words[i];
+    return out;
+}
+
+double off_number(const std::string& word, const std::string& where) {
+    char* end = nullptr;
+    const double v = std::strtod(word.c_str(), &end);
+    if (word.empty() || *end != '\0') throw Error(where + ": '" + word + "' is not a number");
+    return v;
+}
+
+void read_off(Data& d, const std::string& path, const std::string& bytes) {
+    const std::string what = "cannot read '" + path + "' as OFF";
+    std::vector<std::vector<std::string>> lines;
+    for (const auto& line : lines_of(bytes, '#'))
+        if (!blank(line)) lines.push_back(words_of(line));
+    if (lines.empty()) throw Error(what + ": no 'OFF' header");
+    std::string keyword = lines[0][0];
+    if (keyword.size() < 3 || keyword.compare(keyword.size() - 3, 3, "OFF") != 0) throw Error(what + ": no 'OFF' header");
+    const std::string prefix = keyword.substr(0, keyword.size() - 3);
+    if (prefix != "" && prefix != "C" && prefix != "N" && prefix != "CN" && prefix != "NC" && prefix != "ST" &&
+        prefix != "STC" && prefix != "STN" && prefix != "STCN" && prefix != "STNC")
+        throw Error(what + ": the variant '" + keyword + "' is not read (only [ST][C][N]OFF, 3D, ASCII)");
+    const bool normals = prefix.find('N') != std::string::npos, texture = prefix.find("ST") != std::string::npos;
+    size_t next = 1;
+    std::vector<std::string> counts(lines[0].begin() + 1, lines[0].end());
+    if (counts.empty()) {
+        if (lines.size() < 2) throw Error(what + ": no vertex and face counts");
+        counts = lines[next++];
+    }
+    if (counts.size() > 0 && counts[0] == "BINARY") throw Error(what + ": binary OFF is not read");
+    if (counts.size() < 2) throw Error(what + ": no vertex and face counts");
+    const double nv = off_number(counts[0], what), nf = off_number(counts[1], what);
+    if (!(nv >= 0 && nf >= 0) || nv + nf > double(lines.size() - next))
+        throw Error(what + ": it announces " + counts[0] + " vertices and " + counts[1] + " faces, more lines than it has");
+    d.off_keyword = keyword;
+    d.points.resize(Eigen::Index(nv), 3);
+    for (size_t i = 0; i < size_t(nv); ++i) {
+        const auto& w = lines[next++];
+        const std::string where = what + ": vertex " + std::to_string(i);
+        const size_t fixed = 3 + (normals ? 3 : 0);
+        if (w.size() < fixed + (texture ? 2 : 0)) throw Error(where + " has too few numbers");
+        for (int k = 0; k < 3; ++k) d.points(Eigen::Index(i), k) = off_number(w[size_t(k)], where);
+        d.vertex_tail.push_back(joined(w, fixed));
+    }
+    FaceList faces;
+    for (size_t f = 0; f < size_t(nf); ++f) {
+        const auto& w = lines[next++];
+        const std::string where = what + ": face " + std::to_string(f);
+        const double n = off_number(w[0], where);
+        if (!(n >= 0) || n + 1 > double(w.size())) throw Error(where + " lists fewer corners than it announces");
+        std::vector<long> corners;
+        for (size_t k = 1; k <= size_t(n); ++k) {
+            const double v = off_number(w[k], where);
+            if (!(v >= 0 && v < 2147483647.0) || v != std::floor(v)) throw Error(where + " has the index " + w[k]);
+            corners.push_back(long(v));
+        }
+        faces.add(corners, f);
+        const std::string tail = joined(w, size_t(n) + 1);
+        d.face_tail.resize(faces.triangles.size(), tail);
+    }
+    check_indices(faces, size_t(nv), what);
+    store_faces(d, faces, "OFF");
+}
+
+std::string off_text(const Data* d, const Points& p, const Triangles& t) {
+    const std::string keyword = d ? d->off_keyword : "OFF";
+    const bool normals = keyword.find('N') != std::string::npos;
+    const Points n = normals ? vertex_normals(p, t) : Points();
+    std::string out = keyword + "\n" + std::to_string(p.rows()) + " " + std::to_string(t.rows()) + " 0\n";
+    for (Eigen::Index i = 0; i < p.rows(); ++i) {
+        out += full_precision(p(i, 0)) + " " + full_precision(p(i, 1)) + " " + full_precision(p(i, 2));
+        if (normals) out += " " + full_precision(n(i, 0)) + " " + full_precision(n(i, 1)) + " " + full_precision(n(i, 2));
+        if (d) out += d->vertex_tail[size_t(i)];
+        out += "\n";
+    }
+    for (Eigen::Index f = 0; f < t.rows(); ++f)
+        out += "3 " + std::to_string(t(f, 0)) + " " + std::to_string(t(f, 1)) + " " + std::to_string(t(f, 2)) +
+               (d ? d->face_tail[size_t(f)] : "") + "\n";
+    return out;
+}
+
+// ---------------------------------------------------------------------------------------------
+// STL: every triangle stores its own three corners. Binary when the size matches the count
+// in the header exactly, ASCII ("solid ... vertex x y z ...") otherwise.
+
+void read_stl(Data& d, const std::string& path, const std::string& bytes) {
+    std::vector<std::array<float, 3>> corners;
+    uint32_t count = 0;
+    if (bytes.size() >= 84) std::memcpy(&count, bytes.data() + 80, sizeof count);
+    if (bytes.size() >= 84 && bytes.size() == 84 + 50 * static_cast<uint64_t>(count)) {
+        corners.reserve(size_t(count) * 3);
+        for (uint32_t t = 0; t < count; ++t)
+            for (int k = 0; k < 3; ++k) {
+                std::array<float, 3> xyz;
+                std::memcpy(xyz.data(), bytes.data() + 84 + 50 * size_t(t) + 12 + 12 * k, sizeof xyz);  // after the normal
+                corners.push_back(xyz);
+            }
+    } else {
+        std::istringstream text(bytes);
+        std::string word;
+        if (!(text >> word) || word != "solid")
+            throw Error("cannot read '" + path + "' as STL: neither a binary STL (size does not match its triangle count)"
+                        " nor an ASCII one (no 'solid')");
+        while (text >> word) {
+            if (word != "vertex") continue;
+            std::array<float, 3> xyz;
+            if (!(text >> xyz[0] >> xyz[1] >> xyz[2]))
+                throw Error("cannot read '" + path + "' as STL: a vertex line lacks coordinates");
+            corners.push_back(xyz);
+        }
+        if (corners.size() % 3 != 0)
+            throw Error("cannot read '" + path + "' as STL: " + std::to_string(corners.size()) +
+                        " vertices do not make whole triangles");
+    }
+    // Welding: the copies of one corner are the same float triplet, so exact comparison is
+    // right (with -0 taken as 0). Vertices are numbered in the order they first appear.
+    struct Key {
+        std::array<uint32_t, 3> bits;
+        bool operator==(const Key& o) const { return bits == o.bits; }
+    };
+    struct Hash {
+        size_t operator()(const Key& k) const { return (size_t(k.bits[0]) * 73856093u) ^ (size_t(k.bits[1]) * 19349663u) ^ (size_t(k.bits[2]) * 83492791u); }
+    };
+    std::unordered_map<Key, int, Hash> index;
+    std::vector<std::array<float, 3>> unique;
+    std::vector<int> corner_vertex(corners.size());
+    for (size_t c = 0; c < corners.size(); ++c) {
+        Key key;
+        for (int k = 0; k < 3; ++k) {
+            const float v = corners[c][size_t(k)] == 0.0f ? 0.0f : corners[c][size_t(k)];
+            std::memcpy(&key.bits[size_t(k)], &v, sizeof v);
+        }
+        const auto [it, added] = index.emplace(key, int(unique.size()));
+        if (added) unique.push_back(corners[c]);
+        corner_vertex[c] = it->second;
+    }
+    d.points.resize(Eigen::Index(unique.size()), 3);
+    for (size_t i = 0; i < unique.size(); ++i)
+        for (int k = 0; k < 3; ++k) d.points(Eigen::Index(i), k) = unique[i][size_t(k)];
+    d.triangles.resize(Eigen::Index(corners.size() / 3), 3);
+    for (size_t c = 0; c < corners.size(); ++c) d.triangles(Eigen::Index(c / 3), int(c % 3)) = corner_vertex[c];
+    d.notes.push_back("STL has no shared vertices: welded its " + std::to_string(corners.size()) +
+                      " triangle corners into " + std::to_string(unique.size()) + " vertices");
+}
+
+std::string stl_text(const Points& p, const Triangles& t) {
+    std::string out = "binary STL written by geofilter";
+    out.resize(80, ' ');
+    put(out, uint32_t(t.rows()));
+    for (Eigen::Index f = 0; f < t.rows(); ++f) {
+        const Eigen::RowVector3d n = face_normal(p, t, f);
+        for (int k = 0; k < 3; ++k) put(out, float(n(k)));
+        for (int c = 0; c < 3; ++c)
+            for (int k = 0; k < 3; ++k) put(out, float(p(t(f, c), k)));
+        put(out, uint16_t(0));
+    }
+    return out;
+}
+
+// `d` is what was read when writing in the format that was read, else null: attributes are
+// carried only within one format.
+void save(const std::string& path, const Data* d, const Points& p, const Triangles& t, const std::vector<int>& selected) {
+    const MeshFormat format = require_format(path);
+    if (d && d->format != format) d = nullptr;
+    std::string text;
+    switch (format) {
+    case MeshFormat::Ply: text = ply_text(d, p, t, selected); break;
+    case MeshFormat::Obj: text = obj_text(p, t); break;
+    case MeshFormat::Off: text = off_text(d, p, t); break;
+    case MeshFormat::Stl: text = stl_text(p, t); break;
+    }
+    std::ofstream out(path, std::ios::binary);
+    out.write(text.data(), std::streamsize(text.size()));
+    out.close();
+    if (!out) throw Error("cannot write '" + path + "': " + std::strerror(errno));
+}
+
+} // namespace
 
 std::optional<MeshFormat> format_of(const std::string& path) {
     const auto dot = path.find_last_of('.');
@@ -197,53 +762,6 @@ const char* format_name(MeshFormat format) {
 
 const char* supported_formats() { return "PLY, OBJ, OFF or STL (.ply, .obj, .off, .stl)"; }
 
-namespace {
-
-// STL is read here rather than by vcglib: this vcglib's STL importer runs strlen over the
-// unterminated 80-byte header (AddressSanitizer: stack-buffer-overflow) and trusts the
-// triangle count of a truncated binary file. Binary when the size matches the count in
-// the header exactly, ASCII ("solid ... vertex x y z ...") otherwise.
-void read_stl(CliMesh& m, const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    const std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    std::vector<vcg::Point3f> corners;
-    uint32_t count = 0;
-    if (bytes.size() >= 84) std::memcpy(&count, bytes.data() + 80, sizeof count);
-    if (bytes.size() >= 84 && bytes.size() == 84 + 50 * static_cast<uint64_t>(count)) {
-        corners.reserve(size_t(count) * 3);
-        for (uint32_t t = 0; t < count; ++t) {
-            const char* facet = bytes.data() + 84 + 50 * size_t(t);
-            for (int k = 0; k < 3; ++k) {
-                float xyz[3];
-                std::memcpy(xyz, facet + 12 + 12 * k, sizeof xyz);  // skip the stored normal
-                corners.emplace_back(xyz[0], xyz[1], xyz[2]);
-            }
-        }
-    } else {
-        std::istringstream text(std::string(bytes.begin(), bytes.end()));
-        std::string word;
-        if (!(text >> word) || word != "solid")
-            throw Error("cannot read '" + path + "' as STL: neither a binary STL (size does not match its triangle count)"
-                        " nor an ASCII one (no 'solid')");
-        while (text >> word) {
-            if (word != "vertex") continue;
-            float x, y, z;
-            if (!(text >> x >> y >> z)) throw Error("cannot read '" + path + "' as STL: a vertex line lacks coordinates");
-            corners.emplace_back(x, y, z);
-        }
-        if (corners.size() % 3 != 0)
-            throw Error("cannot read '" + path + "' as STL: " + std::to_string(corners.size()) +
-                        " vertices do not make whole triangles");
-    }
-    auto vi = vcg::tri::Allocator<CliMesh>::AddVertices(m, corners.size());
-    for (const auto& c : corners) (vi++)->P() = vcg::Point3d(c[0], c[1], c[2]);
-    auto fi = vcg::tri::Allocator<CliMesh>::AddFaces(m, corners.size() / 3);
-    for (size_t t = 0; t < corners.size() / 3; ++t, ++fi)
-        for (int k = 0; k < 3; ++k) fi->V(k) = &m.vert[3 * t + k];
-}
-
-} // namespace
-
 MeshFile::MeshFile(std::unique_ptr<Data> data) : data_(std::move(data)) {}
 MeshFile::MeshFile(MeshFile&&) noexcept = default;
 MeshFile& MeshFile::operator=(MeshFile&&) noexcept = default;
@@ -252,57 +770,16 @@ MeshFile::~MeshFile() = default;
 MeshFile MeshFile::read(const std::string& path) {
     auto d = std::make_unique<Data>();
     d->format = require_format(path);
-    require_readable(path);
-    CliMesh& m = d->mesh;
-    const bool shifted_obj = d->format == MeshFormat::Obj && obj_importer_drops_first_vertex();
-    const std::string source = shifted_obj ? obj_copy_with_leading_vertex(path) : path;
-    int err = 0;
-    if (d->format == MeshFormat::Stl) {
-        read_stl(m, path);
-        d->load_mask = 0;
-    } else {
-        err = Importer::Open(m, source.c_str(), d->load_mask);
+    const std::string bytes = read_whole(path);
+    switch (d->format) {
+    case MeshFormat::Ply: read_ply(*d, path, bytes); break;
+    case MeshFormat::Obj: read_obj(*d, path, bytes); break;
+    case MeshFormat::Off: read_off(*d, path, bytes); break;
+    case MeshFormat::Stl: read_stl(*d, path, bytes); break;
     }
-    if (source != path) std::remove(source.c_str());
-    if (err != 0 && Importer::ErrorCritical(err))
-        throw Error("cannot read '" + path + "' as " + format_name(d->format) + ": " + Importer::ErrorMsg(err));
-    if (source != path && m.vn > 0) {
-        // The leading duplicate: no face may use it, or the shift went wrong.
-        for (const auto& f : m.face)
-            for (int k = 0; k < 3; ++k)
-                if (f.cV(k) == &m.vert[0])
-                    throw Error("internal: reading '" + path + "' through a shifted copy went wrong (face uses vertex 0)");
-        vcg::tri::Allocator<CliMesh>::DeleteVertex(m, m.vert[0]);
-        vcg::tri::Allocator<CliMesh>::CompactEveryVector(m);
-    }
-
-    if (d->format == MeshFormat::Stl) {
-        const int corners = m.vn;
-        // Exact comparison is right here: the copies of one corner are the same float triplet.
-        vcg::tri::Clean<CliMesh>::RemoveDuplicateVertex(m, false);
-        vcg::tri::Allocator<CliMesh>::CompactEveryVector(m);
-        d->notes.push_back("STL has no shared vertices: welded its " + std::to_string(corners) + " triangle corners into " +
-                           std::to_string(m.vn) + " vertices");
-    }
-    d->has_stored_flags = (d->load_mask & IoMask::IOM_FACEFLAGS) != 0;
-    d->stored_selection = keep_only_selection_flags(m);
     if (d->has_stored_flags)
         d->notes.push_back("stored face flags: " + std::to_string(d->stored_selection.size()) + " of " +
-                           std::to_string(m.fn) + " faces selected");
-    if (d->load_mask & IoMask::IOM_BITPOLYGONAL)
-        d->notes.push_back("the file has polygons: vcglib split them into triangles, and triangles are written");
-    // Flags are this session's business: they are written back only as the selection.
-    // Polygons would be rebuilt from faux edges, which needs adjacency this mesh type lacks.
-    d->load_mask &= ~(IoMask::IOM_FACEFLAGS | IoMask::IOM_VERTFLAGS | IoMask::IOM_BITPOLYGONAL);
-
-    d->points.resize(Eigen::Index(m.vert.size()), 3);
-    for (size_t i = 0; i < m.vert.size(); ++i)
-        for (int k = 0; k < 3; ++k) d->points(Eigen::Index(i), k) = m.vert[i].P()[k];
-    d->triangles.resize(Eigen::Index(m.face.size()), 3);
-    for (size_t i = 0; i < m.face.size(); ++i)
-        for (int k = 0; k < 3; ++k) d->triangles(Eigen::Index(i), k) = int(vcg::tri::Index(m, m.face[i].V(k)));
-    if (d->load_mask & IoMask::IOM_VERTQUALITY)
-        for (const auto& v : m.vert) d->vertex_quality.push_back(v.Q());
+                           std::to_string(d->triangles.rows()) + " faces selected");
     return MeshFile(std::move(d));
 }
 
@@ -315,28 +792,12 @@ const std::vector<double>& MeshFile::vertex_quality() const { return data_->vert
 const std::vector<std::string>& MeshFile::notes() const { return data_->notes; }
 
 void MeshFile::write(const std::string& path, const Points& points, const std::vector<int>& selected_faces) {
-    CliMesh& m = data_->mesh;
-    if (points.rows() != Eigen::Index(m.vert.size()))
-        throw Error("internal: " + std::to_string(points.rows()) + " points for " + std::to_string(m.vert.size()) +
+    if (points.rows() != data_->points.rows())
+        throw Error("internal: " + std::to_string(points.rows()) + " points for " + std::to_string(data_->points.rows()) +
                     " vertices");
-    for (size_t i = 0; i < m.vert.size(); ++i)
-        m.vert[i].P() = vcg::Point3d(points(Eigen::Index(i), 0), points(Eigen::Index(i), 1), points(Eigen::Index(i), 2));
-    for (auto& f : m.face) f.ClearS();
-    for (int i : selected_faces) m.face[size_t(i)].SetS();
-    int mask = data_->load_mask;
-    if (!selected_faces.empty() && require_format(path) == MeshFormat::Ply) mask |= IoMask::IOM_FACEFLAGS;
-    save(m, path, mask);
+    save(path, data_.get(), points, data_->triangles, require_format(path) == MeshFormat::Ply ? selected_faces : std::vector<int>());
 }
 
-void write_mesh(const std::string& path, const Mesh& mesh) {
-    CliMesh m;
-    auto vi = vcg::tri::Allocator<CliMesh>::AddVertices(m, size_t(mesh.points.rows()));
-    for (Eigen::Index i = 0; i < mesh.points.rows(); ++i, ++vi)
-        vi->P() = vcg::Point3d(mesh.points(i, 0), mesh.points(i, 1), mesh.points(i, 2));
-    auto fi = vcg::tri::Allocator<CliMesh>::AddFaces(m, size_t(mesh.triangles.rows()));
-    for (Eigen::Index i = 0; i < mesh.triangles.rows(); ++i, ++fi)
-        for (int k = 0; k < 3; ++k) fi->V(k) = &m.vert[size_t(mesh.triangles(i, k))];
-    save(m, path, IoMask::IOM_VERTCOORD | IoMask::IOM_FACEINDEX);
-}
+void write_mesh(const std::string& path, const Mesh& mesh) { save(path, nullptr, mesh.points, mesh.triangles, {}); }
 
 } // namespace geofilter::cli

@@ -1,9 +1,9 @@
-// Reading and writing meshes for the command-line tool through vcglib's importers and
-// exporters (PLY, OBJ, OFF, STL). vcglib stays inside mesh_io.cpp: the rest of the tool
-// sees the core's plain arrays.
+// Reading and writing meshes for the command-line tool (PLY, OBJ, OFF, STL) with readers
+// and writers of its own (mesh_io.cpp says why), so that the tool builds without MeshLab's
+// sources. The rest of the tool sees the core's plain arrays.
 #pragma once
 
-#include "core/shapes.h"
+#include "core/types.h"
 #include "core/types.h"
 
 #include <memory>
@@ -22,7 +22,7 @@ const char* supported_formats();  // for messages: "PLY, OBJ, OFF or STL (.ply, 
 
 class MeshFile {
 public:
-    // Throws Error naming the file and vcglib's reason. STL stores every triangle with its
+    // Throws Error naming the file and the reason. STL stores every triangle with its
     // own three corners: those are welded (bit-identical positions merged) so that the
     // mesh is connected, as the Laplacian needs.
     static MeshFile read(const std::string& path);
@@ -34,7 +34,7 @@ public:
     MeshFormat format() const;
     const Points& points() const;
     const Triangles& triangles() const;
-    // The file carried vcglib/MeshLab face flags (PLY "property int flags" on faces).
+    // The file carried MeshLab's (vcglib's) face flags (PLY "property int flags" on faces).
     bool has_stored_flags() const;
     // Faces whose stored flags have the selection bit; empty without stored flags.
     const std::vector<int>& stored_selection() const;
@@ -44,8 +44,9 @@ public:
     // What reading did that a user should know (welding, triangulated polygons, dropped flags).
     const std::vector<std::string>& notes() const;
 
-    // Writes the mesh with `points` in place of the read ones, keeping the attributes that
-    // were read and that `path`'s format can hold (normals are recomputed). A PLY output
+    // Writes the mesh with `points` in place of the read ones. Written in the format that was
+    // read, it keeps the attributes read with it (PLY: every scalar vertex and face property;
+    // OFF: colours and texture coordinates); normals are recomputed. A PLY output
     // stores `selected_faces` as face flags when there are any. Throws Error.
     void write(const std::string& path, const Points& points, const std::vector<int>& selected_faces);
 

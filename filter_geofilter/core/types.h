@@ -16,6 +16,11 @@ using Points = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
 using Triangles = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;
 using SparseMatrix = Eigen::SparseMatrix<double>;
 
+struct Mesh {
+    Points points;
+    Triangles triangles;
+};
+
 // Every refusal of the core is an Error whose message names the problem and,
 // where there is one, the fix. Adapters show what() verbatim.
 class Error : public std::runtime_error {

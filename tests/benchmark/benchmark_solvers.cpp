@@ -5,7 +5,7 @@
 #include "core/filter.h"
 #include "core/laplace.h"
 #include "core/region.h"
-#include "core/shapes.h"
+#include "shapes.h"
 #include "core/solvers.h"
 #include "core/transfer_function.h"
 

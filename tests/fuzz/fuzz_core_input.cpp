@@ -1,6 +1,7 @@
 #include "fuzz_core_input.h"
 
 #include "run_filter.h"
+#include "shapes.h"
 
 #include <cmath>
 #include <cstdio>

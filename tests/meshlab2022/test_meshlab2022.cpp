@@ -12,7 +12,7 @@
 // plugin through meshlabserver.
 
 #include "core/region.h"
-#include "core/shapes.h"
+#include "shapes.h"
 #include "filter_table.h"
 #include "reference_design.h"
 

@@ -1,5 +1,5 @@
 #include "core/feature.h"
-#include "core/shapes.h"
+#include "shapes.h"
 
 #include <gtest/gtest.h>
 

@@ -7,7 +7,7 @@
 #include <complex>
 #include <set>
 
-#include "core/shapes.h"
+#include "shapes.h"
 
 using namespace geofilter;
 

@@ -3,7 +3,7 @@
 // mesh that is already Delaunay.
 #include "core/intrinsic_delaunay.h"
 #include "core/operators.h"
-#include "core/shapes.h"
+#include "shapes.h"
 #include "spectral.h"
 
 #include <gtest/gtest.h>

@@ -1,7 +1,7 @@
 // Bad meshes: a clear refusal, or a repair that leaves the odd parts alone.
 #include "core/filter.h"
 #include "core/mesh_prep.h"
-#include "core/shapes.h"
+#include "shapes.h"
 #include "run_filter.h"
 #include "spectral.h"
 

@@ -1,6 +1,6 @@
 // What run_filter tells the user: a leftover selection silently replacing the typed s1 is
 // the most surprising thing a filter can do, so the log must say it.
-#include "core/shapes.h"
+#include "shapes.h"
 #include "run_filter.h"
 
 #include <gtest/gtest.h>

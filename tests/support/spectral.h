@@ -3,7 +3,7 @@
 #pragma once
 
 #include "core/laplace.h"
-#include "core/shapes.h"
+#include "shapes.h"
 #include "core/transfer_function.h"
 
 #include <Eigen/Eigenvalues>

@@ -2,7 +2,7 @@
 // connected patches of them small enough for the dense spectral reference. Test-only.
 #pragma once
 
-#include "core/shapes.h"
+#include "shapes.h"
 
 #include <gtest/gtest.h>
 

@@ -1,19 +1,13 @@
-// Procedural meshes with known geometry, for tests, benchmarks and demos.
+// Procedural meshes with known geometry, for the tests, the benchmark and the fuzzers.
 #pragma once
 
-#include "types.h"
+#include "core/icosphere.h"
 
 namespace geofilter {
 
-struct Mesh {
-    Points points;
-    Triangles triangles;
-};
+// (icosphere and subdivide are the production ones, core/icosphere.h.)
 
-// Icosahedron subdivided `levels` times (each level splits every triangle in four) and
-// projected on the sphere of `radius`: 10 * 4^levels + 2 vertices, nearly regular.
-Mesh icosphere(int levels, double radius = 1.0);
-// Tetrahedron subdivided the same way and projected on the sphere.
+// Tetrahedron subdivided the way icosphere is and projected on the sphere.
 Mesh tetrasphere(int levels, double radius = 1.0);
 // Latitude/longitude sphere with `rings` latitude bands and `segments` meridians.
 Mesh uv_sphere(int rings, int segments, double radius = 1.0);
@@ -26,7 +20,5 @@ Mesh grid(int n, double size);
 
 // Moves each vertex along its radial direction by amplitude * unit noise (seeded, deterministic).
 void perturb_radially(Mesh& mesh, double amplitude, unsigned seed);
-// Splits every triangle in four (midpoints shared) without projecting.
-Mesh subdivide(const Mesh& mesh);
 
 } // namespace geofilter

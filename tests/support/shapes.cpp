@@ -1,71 +1,15 @@
 #include "shapes.h"
 
 #include <cmath>
-#include <map>
 #include <random>
-#include <utility>
 #include <vector>
 
 namespace geofilter {
 
-namespace {
-
-Mesh subdivide_onto_sphere(Mesh mesh, int levels, double radius) {
-    for (int l = 0; l < levels; ++l) mesh = subdivide(mesh);
-    for (Eigen::Index i = 0; i < mesh.points.rows(); ++i) mesh.points.row(i) = radius * mesh.points.row(i).normalized();
-    return mesh;
-}
-
-Mesh from_lists(const std::vector<Eigen::Vector3d>& v, const std::vector<Eigen::Vector3i>& f) {
-    Mesh m;
-    m.points.resize(static_cast<Eigen::Index>(v.size()), 3);
-    for (size_t i = 0; i < v.size(); ++i) m.points.row(i) = v[i].transpose();
-    m.triangles.resize(static_cast<Eigen::Index>(f.size()), 3);
-    for (size_t i = 0; i < f.size(); ++i) m.triangles.row(i) = f[i].transpose();
-    return m;
-}
-
-} // namespace
-
-Mesh subdivide(const Mesh& mesh) {
-    std::vector<Eigen::Vector3d> v;
-    v.reserve(mesh.points.rows() * 4);
-    for (Eigen::Index i = 0; i < mesh.points.rows(); ++i) v.emplace_back(mesh.points.row(i).transpose());
-    std::map<std::pair<int, int>, int> midpoint;
-    auto mid = [&](int a, int b) {
-        const auto key = std::minmax(a, b);
-        auto it = midpoint.find(key);
-        if (it != midpoint.end()) return it->second;
-        v.push_back(0.5 * (v[a] + v[b]));
-        return midpoint[key] = static_cast<int>(v.size()) - 1;
-    };
-    std::vector<Eigen::Vector3i> f;
-    f.reserve(mesh.triangles.rows() * 4);
-    for (Eigen::Index t = 0; t < mesh.triangles.rows(); ++t) {
-        const int a = mesh.triangles(t, 0), b = mesh.triangles(t, 1), c = mesh.triangles(t, 2);
-        const int ab = mid(a, b), bc = mid(b, c), ca = mid(c, a);
-        f.emplace_back(a, ab, ca);
-        f.emplace_back(b, bc, ab);
-        f.emplace_back(c, ca, bc);
-        f.emplace_back(ab, bc, ca);
-    }
-    return from_lists(v, f);
-}
-
-Mesh icosphere(int levels, double radius) {
-    const double t = (1.0 + std::sqrt(5.0)) / 2.0;
-    const std::vector<Eigen::Vector3d> v = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                                            {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
-    const std::vector<Eigen::Vector3i> f = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-                                            {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-                                            {3, 8, 9},  {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
-    return subdivide_onto_sphere(from_lists(v, f), levels, radius);
-}
-
 Mesh tetrasphere(int levels, double radius) {
     const std::vector<Eigen::Vector3d> v = {{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}};
     const std::vector<Eigen::Vector3i> f = {{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}};
-    return subdivide_onto_sphere(from_lists(v, f), levels, radius);
+    return subdivide_onto_sphere(mesh_from_lists(v, f), levels, radius);
 }
 
 Mesh uv_sphere(int rings, int segments, double radius) {
@@ -91,7 +35,7 @@ Mesh uv_sphere(int rings, int segments, double radius) {
             f.emplace_back(at(i, j), at(i + 1, j), at(i + 1, j + 1));
             f.emplace_back(at(i, j), at(i + 1, j + 1), at(i, j + 1));
         }
-    return from_lists(v, f);
+    return mesh_from_lists(v, f);
 }
 
 Mesh cylinder(int rings, int segments, double radius, double length) {
@@ -115,7 +59,7 @@ Mesh cylinder(int rings, int segments, double radius, double length) {
                 f.emplace_back(a, b, d);
             }
         }
-    return from_lists(v, f);
+    return mesh_from_lists(v, f);
 }
 
 Mesh torus(int rings, int segments, double major_radius, double minor_radius) {
@@ -134,7 +78,7 @@ Mesh torus(int rings, int segments, double major_radius, double minor_radius) {
             f.emplace_back(a, c, d);
             f.emplace_back(a, d, b);
         }
-    return from_lists(v, f);
+    return mesh_from_lists(v, f);
 }
 
 Mesh grid(int n, double size) {
@@ -148,7 +92,7 @@ Mesh grid(int n, double size) {
             f.emplace_back(a, b, d);
             f.emplace_back(a, d, c);
         }
-    return from_lists(v, f);
+    return mesh_from_lists(v, f);
 }
 
 void perturb_radially(Mesh& mesh, double amplitude, unsigned seed) {
