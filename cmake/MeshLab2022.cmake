@@ -130,7 +130,7 @@ set(MESHLAB_2022_COMMON_LIBRARY "${MESHLAB2022_COMMON_LIBRARY}")
 if(NOT MESHLAB_2022_COMMON_LIBRARY)
   if(NOT MESHLAB_BUILD_DIR)
     message(FATAL_ERROR "MeshLab2022: give -DMESHLAB_BUILD_DIR=<folder where ${MESHLAB_SOURCE_DIR} was built> "
-                        "(scripts/build-meshlab-2022.sh makes one), or -DMESHLAB2022_COMMON_LIBRARY=<libmeshlab-common.so>")
+                        "(scripts/build-meshlab-source.sh makes one), or -DMESHLAB2022_COMMON_LIBRARY=<libmeshlab-common.so>")
   endif()
   # distrib/ is where MeshLab's own build puts it; lib*/ covers an install prefix.
   foreach(_d distrib . src/distrib lib/meshlab lib lib64/meshlab)

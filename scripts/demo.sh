@@ -25,7 +25,7 @@ for job in bunny_lowpass bunny_ears; do
     # meshlabserver repeats its whole log after each filter: show each GeoFilter line once.
     grep '^LOG: .*GeoFilter' "$out/$job.log" | sed 's/^LOG: [0-9] /  /' | awk '!seen[$0]++'
 done
-/usr/bin/python3 "$top/scripts/render_meshes.py" "$out/demo.png" \
+"$top/experiments/run" geofilter_experiments.render_meshes "$out/demo.png" \
     "$top/meshes/bunny00.off=input: bunny00 (37,706 vertices)" \
     "$out/bunny_lowpass.ply=Lowpass, s1 = 200 (r = 0.1)" \
     "$out/bunny_ears.ply=Band exaggeration, s1 from the ear"

@@ -10,9 +10,7 @@ top=$(cd "$(dirname "$0")/.." && pwd)
 seconds=${1:-120}
 build="$top/build-fuzz"
 command -v clang++ >/dev/null || { echo "fuzz: clang++ missing: apt-get install clang libclang-rt-14-dev" >&2; exit 1; }
-source_dir=$(sed -n 's/^MESHLAB_SOURCE_DIR:PATH=//p' "$top/build/CMakeCache.txt" 2>/dev/null || true)
 CXX=clang++ cmake -S "$top" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGEOFILTER_FUZZ=ON \
-    ${source_dir:+-DMESHLAB_SOURCE_DIR="$source_dir"} \
     -DGEOFILTER_BUILD_PLUGIN=OFF -DGEOFILTER_BUILD_TESTS=OFF -DGEOFILTER_BUILD_BENCHMARK=OFF -DGEOFILTER_BUILD_CLI=ON >/dev/null
 cmake --build "$build" -j"$(nproc)" --target fuzz_core fuzz_mesh_readers
 status=0

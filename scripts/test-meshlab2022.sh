@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Tests the MeshLab 2022.02 plugin: builds MeshLab 2022.02 (cached, scripts/build-meshlab-2022.sh),
+# Tests the MeshLab 2022.02 plugin: builds MeshLab 2022.02 (cached, scripts/build-meshlab-source.sh),
 # the 2020.09 plugin of the default build (the comparison's reference), this repository in
 # build-2022/ against that MeshLab, and runs `ctest -L meshlab2022` there.
 #
@@ -26,10 +26,10 @@ build2020=${GEOFILTER_BUILD_DIR:-$top/build}
 [ -f "$build2020/CMakeCache.txt" ] || nice cmake -S "$top" -B "$build2020" -DCMAKE_BUILD_TYPE=Release
 nice cmake --build "$build2020" -j"$jobs" --target filter_geofilter
 
-out=$("$top/scripts/build-meshlab-2022.sh" "${ml_args[@]}")
+out=$("$top/scripts/build-meshlab-source.sh" "${ml_args[@]}")
 src=$(sed -n 's/^MESHLAB_SOURCE_DIR=//p' <<<"$out")
 mlbuild=$(sed -n 's/^MESHLAB_BUILD_DIR=//p' <<<"$out")
-[ -n "$src" ] && [ -n "$mlbuild" ] || { echo "test-meshlab2022: build-meshlab-2022.sh gave no folders" >&2; exit 1; }
+[ -n "$src" ] && [ -n "$mlbuild" ] || { echo "test-meshlab2022: build-meshlab-source.sh gave no folders" >&2; exit 1; }
 
 build=$top/build-2022$suffix
 nice cmake -S "$top" -B "$build" -DCMAKE_BUILD_TYPE=Release \

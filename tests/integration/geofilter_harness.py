@@ -2,8 +2,8 @@
 
 meshlabserver 2020.09 aborts on a script that omits a parameter (and refuses one with an
 extra parameter), so every script lists EVERY parameter of a GeoFilter filter. The lists
-live in FILTERS below, in one place; test_harness.py checks them against what the
-plugin declares.
+(FILTERS below) come from the build's filter table; test_harness.py checks them against
+what the plugin declares.
 """
 
 import os
@@ -16,6 +16,7 @@ import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
 
 import numpy as np
+import filter_table
 from reference_design import eq15_gain  # noqa: F401 (used as harness.eq15_gain)
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -24,8 +25,9 @@ PLUGIN_RELDIR = os.path.join("lib", "x86_64-linux-gnu", "meshlab", "plugins")
 
 
 # ---------------------------------------------------------------------------------------------
-# The parameter lists of the GeoFilter filters, in the plugin's order. Defaults mirror the
-# filter table (filter_table.cpp) for convenience; every script states every value anyway.
+# The parameter lists of the GeoFilter filters, in the plugin's order, from the filter table
+# the build wrote (filter_table.py). Defaults are the table's but for the harness's own two
+# choices: useSelection off (a test selects explicitly) and a tighter solver tolerance.
 
 @dataclass(frozen=True)
 class Param:
@@ -35,57 +37,20 @@ class Param:
     choices: int = 0  # RichEnum only: number of choices (enum_cardinality)
 
 
-def _tail():
-    return [
-        Param("featureShape", "RichEnum", 0, 2),
-        Param("fixBoundary", "RichBool", False),
-        Param("solver", "RichEnum", 0, 2),
-        Param("tolerance", "RichFloat", 1e-10),
-        Param("maxIterations", "RichInt", 100000),
-        Param("region", "RichEnum", 0, 3),
-        Param("blendWidth", "RichFloat", 0.0),
-    ]
+HARNESS_DEFAULTS = {"useSelection": False, "tolerance": 1e-10}
 
 
-def _second_order(s1, s2, G0, G1, Ginf):
-    return [
-        Param("s1", "RichFloat", s1),
-        Param("s2", "RichFloat", s2),
-        Param("G0", "RichFloat", G0),
-        Param("G1", "RichFloat", G1),
-        Param("Ginf", "RichFloat", Ginf),
-        Param("useSelection", "RichBool", False),
-    ] + _tail()
+def _param(spec):
+    kind = spec["type"]
+    default = HARNESS_DEFAULTS.get(spec["name"], spec["default"])
+    if kind == "Bool":
+        default = bool(default)
+    elif kind in ("Int", "Enum"):
+        default = int(default)
+    return Param(spec["name"], "Rich" + kind, default, len(spec["choices"]) if kind == "Enum" else 0)
 
 
-def _pole_zero():
-    corners = [("z1", 100), ("z2", 400), ("z3", 0), ("z4", 0), ("p1", 50), ("p2", 800), ("p3", 0), ("p4", 0)]
-    return ([Param("G0", "RichFloat", 1.0)] + [Param(n, "RichFloat", v) for n, v in corners] +
-            [Param("useSelection", "RichBool", False), Param("featureCorner", "RichEnum", 0, 8)] + _tail())
-
-
-def _butterworth():
-    return [Param("cutoff", "RichFloat", 25.0), Param("order", "RichInt", 4), Param("useSelection", "RichBool", False),
-            Param("operator", "RichEnum", 0, 4)] + _tail()
-
-
-def _denoise():
-    return [Param("useSelection", "RichBool", False), Param("order", "RichInt", 4),
-            Param("operator", "RichEnum", 0, 4)] + _tail()
-
-
-FILTERS = {
-    "GeoFilter: Lowpass": _second_order(25, 50, 1, 1.1, 0),
-    "GeoFilter: Bandpass": _second_order(25, 100, 0, 2, 0),
-    "GeoFilter: Highpass": _second_order(100, 25, 0, 1.1, 1),
-    "GeoFilter: Notch": _second_order(630, 1260, 1, 0.01, 1.1),
-    "GeoFilter: Band Exaggeration": _second_order(25, 60, 1, 3, 0.9),
-    "GeoFilter: Custom": _second_order(60, 120, 1, 2, 0.9),
-    "GeoFilter: Pole-Zero": _pole_zero(),
-    "GeoFilter: Measure Selected Feature": [],
-    "GeoFilter: Butterworth Lowpass": _butterworth(),
-    "GeoFilter: Denoise": _denoise(),
-}
+FILTERS = {f["name"]: [_param(p) for p in f["parameters"]] for f in filter_table.TABLE}
 SECOND_ORDER = [n for n in FILTERS if FILTERS[n] and FILTERS[n][0].name == "s1"]
 
 

@@ -11,14 +11,11 @@ within single precision.
 import json
 import os
 import re
-import sys
 import unittest
 
 import numpy as np
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "integration"))
-import geofilter_harness as h  # noqa: E402
+import geofilter_harness as h  # tests/integration, on PYTHONPATH through ctest
 
 # Both plugins run the same double-precision core on the same float input; what may differ is
 # only how each MeshLab rounds parameters and results to its scalar type. 16 float epsilons

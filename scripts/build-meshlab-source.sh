@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
-# Builds the parts of MeshLab 2022.02 that GeoFilter's 2022 adapter is tested against
-# (libmeshlab-common, the meshlab GUI (float only), plugins io_base, filter_create,
-# filter_select, filter_unsharp) from Debian trixie's source package, once per machine.
+# Builds, from a Debian source package, the parts of a MeshLab 2022.02 or later that
+# GeoFilter's 2022 adapter is tested against (libmeshlab-common, the meshlab GUI (float
+# only), plugins io_base, filter_create, filter_select, filter_unsharp), once per machine:
+# trixie's 2022.02 by default, sid's 2025.07 with --suite sid.
 #
-#   build-meshlab-2022.sh [--double] [--suite SUITE]
+#   build-meshlab-source.sh [--double] [--suite SUITE]
 #     --double   MeshLab with double-precision scalars (BUILD_WITH_DOUBLE_SCALAR), as
 #                pymeshlab 2025.7 is built; kept in its own build folder.
 #     --suite    another Debian suite's MeshLab (default trixie: 2022.02; sid had 2025.07),
@@ -69,7 +70,7 @@ complete() {
 }
 
 if complete; then
-    echo "build-meshlab-2022: cached build is complete" >&2
+    echo "build-meshlab-source: cached build is complete" >&2
     report "$(sed -n 1p "$stamp")" "$build"
     exit 0
 fi
@@ -92,21 +93,21 @@ for p in "${needed[@]}"; do
 done
 if [ ${#missing[@]} -gt 0 ]; then
     if [ "$(id -u)" -ne 0 ]; then
-        echo "build-meshlab-2022: missing packages (install them as root): ${missing[*]}" >&2
+        echo "build-meshlab-source: missing packages (install them as root): ${missing[*]}" >&2
         exit 1
     fi
-    echo "build-meshlab-2022: installing ${missing[*]}" >&2
+    echo "build-meshlab-source: installing ${missing[*]}" >&2
     DEBIAN_FRONTEND=noninteractive apt-get install -y -q "${missing[@]}" >&2
 fi
 
 src=$("$top/scripts/fetch-debian-source.sh" meshlab "$suite" "$fetch_dest" | tail -n1)
 if [ ! -f "$src/src/common/plugins/interfaces/filter_plugin.h" ]; then
-    echo "build-meshlab-2022: $src is not a MeshLab 2022+ tree (no src/common/plugins/interfaces/filter_plugin.h)" >&2
+    echo "build-meshlab-source: $src is not a MeshLab 2022+ tree (no src/common/plugins/interfaces/filter_plugin.h)" >&2
     exit 1
 fi
 ver=$(tr -d ' \n' <"$src/ML_VERSION")
 [ "$suite" != trixie ] || [ "$ver" = 2022.02 ] ||
-    echo "build-meshlab-2022: NOTE: trixie has MeshLab $ver, not 2022.02; building that" >&2
+    echo "build-meshlab-source: NOTE: trixie has MeshLab $ver, not 2022.02; building that" >&2
 project=$src; [ -f "$project/CMakeLists.txt" ] || project=$src/src
 
 double=OFF; [ "$scalar" = double ] && double=ON
@@ -123,6 +124,6 @@ nice cmake -S "$project" -B "$build" -DCMAKE_BUILD_TYPE=Release --no-warn-unused
     -DBUILD_WITH_DOUBLE_SCALAR=$double -DMESHLAB_BUILD_WITH_DOUBLE_SCALAR=$double >&2
 nice cmake --build "$build" -j"$jobs" --target "${targets[@]}" >&2
 printf '%s\n%s\n' "$src" "$signature" >"$stamp"
-complete || { echo "build-meshlab-2022: build finished but outputs are missing in $build/distrib" >&2; exit 1; }
-echo "build-meshlab-2022: built in $(( $(date +%s) - start )) s" >&2
+complete || { echo "build-meshlab-source: build finished but outputs are missing in $build/distrib" >&2; exit 1; }
+echo "build-meshlab-source: built in $(( $(date +%s) - start )) s" >&2
 report "$src" "$build"

@@ -1,4 +1,4 @@
-"""Shared by compare_taubin.py, reproduce_fig6.py and reproduce_figures.py.
+"""Shared by the experiments (compare_taubin, compare_denoise, reproduce_fig6, reproduce_figures).
 
 meshlabserver scripts are built with the integration-test harness
 (tests/integration/geofilter_harness.py), which lists every GeoFilter parameter; this module
@@ -7,18 +7,16 @@ edge length) and the G(s) plot.
 """
 import os
 import re
-import sys
 import time
 
 import numpy as np
 
+import geofilter_harness as h  # tests/integration, on the path through experiments/run
+
+from .render_meshes import read_off  # noqa: F401  (re-exported for the experiments)
+
 HERE = os.path.dirname(os.path.abspath(__file__))
-TOP = os.path.dirname(HERE)
-sys.path.insert(0, os.path.join(TOP, "tests", "integration"))
-sys.path.insert(0, os.path.join(TOP, "tests", "support"))  # the references the harness imports
-sys.path.insert(0, HERE)
-import geofilter_harness as h  # noqa: E402
-from render_meshes import read_off  # noqa: E402,F401  (re-exported for the scripts)
+TOP = os.path.dirname(os.path.dirname(HERE))
 
 P = h.Param
 MESHES_DIR = os.path.join(TOP, "meshes")

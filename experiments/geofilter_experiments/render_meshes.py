@@ -1,14 +1,12 @@
-#!/usr/bin/python3
 """Renders triangle meshes (OFF or PLY) side by side into one PNG, headless.
 
-    render_meshes.py OUT.png [--view AZIMUTH,ELEVATION] [--up x|y|z] FILE[=TITLE] ...
+    experiments/run geofilter_experiments.render_meshes OUT.png [--view AZIMUTH,ELEVATION] [--up x|y|z] FILE[=TITLE] ...
 
 Orthographic view, flat Lambert shading, back-to-front painting with matplotlib's
 PolyCollection: enough to judge a filter's effect by eye.
 """
 import argparse
 import os
-import sys
 
 import matplotlib
 
@@ -17,10 +15,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.collections import PolyCollection  # noqa: E402
 
-# The test harness, and the test references it imports (tests/support).
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests", "integration"))
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests", "support"))
-from geofilter_harness import read_ply  # noqa: E402
+from geofilter_harness import read_ply  # noqa: E402  (tests/integration, on the path through experiments/run)
 
 
 def read_off(path):
