@@ -31,6 +31,7 @@ import numpy as np
 
 from geofilter_experiments import common as c
 from geofilter_experiments.common import h
+from shapes import icosphere  # tests/support, on the path through experiments/run
 
 P = h.Param
 SEED = 20260101
@@ -74,31 +75,6 @@ def chain(key, counts):
 
 # ---------------------------------------------------------------------------------------------
 # Procedural meshes
-
-def icosphere(levels):
-    t = (1 + 5 ** 0.5) / 2
-    v = [[-1, t, 0], [1, t, 0], [-1, -t, 0], [1, -t, 0], [0, -1, t], [0, 1, t], [0, -1, -t], [0, 1, -t],
-         [t, 0, -1], [t, 0, 1], [-t, 0, -1], [-t, 0, 1]]
-    f = [[0, 11, 5], [0, 5, 1], [0, 1, 7], [0, 7, 10], [0, 10, 11], [1, 5, 9], [5, 11, 4], [11, 10, 2], [10, 7, 6],
-         [7, 1, 8], [3, 9, 4], [3, 4, 2], [3, 2, 6], [3, 6, 8], [3, 8, 9], [4, 9, 5], [2, 4, 11], [6, 2, 10],
-         [8, 6, 7], [9, 8, 1]]
-    v = [np.array(p, float) / np.linalg.norm(p) for p in v]
-    for _ in range(levels):
-        mid, nf = {}, []
-
-        def m(a, b):
-            k = (min(a, b), max(a, b))
-            if k not in mid:
-                p = v[a] + v[b]
-                v.append(p / np.linalg.norm(p))
-                mid[k] = len(v) - 1
-            return mid[k]
-        for a, b, cc in f:
-            ab, bc, ca = m(a, b), m(b, cc), m(cc, a)
-            nf += [[a, ab, ca], [b, bc, ab], [cc, ca, bc], [ab, bc, ca]]
-        f = nf
-    return np.array(v), np.array(f)
-
 
 def torus(rings, segments, R, r):
     u = 2 * np.pi * np.arange(rings) / rings

@@ -18,13 +18,8 @@ done
 [ -f "$mesh" ] || "$top/scripts/fetch-meshes.sh"
 [ -x "$prefix/bin/meshlab" ] || { echo "screenshot-region: $prefix/bin/meshlab missing: run scripts/build.sh" >&2; exit 1; }
 
-work=$(mktemp -d)
-pids=()
-cleanup() {
-    for p in "${pids[@]}"; do kill "$p" 2>/dev/null || true; done
-    rm -rf "$work"
-}
-trap cleanup EXIT
+# shellcheck source=experiments/screenshot-display.sh
+source "$top/experiments/screenshot-display.sh"
 
 # The ear selection of bunny_ear_region.mlx, then Measure Selected Feature.
 sed -n '1,/<\/filter>/p' "$top/scripts/mlx/bunny_ear_region.mlx" | sed '/<!--/,/-->/d' >"$work/measure.mlx"
@@ -40,11 +35,7 @@ xvfb-run -a "$prefix/bin/meshlabserver" -i "$mesh" -s "$top/scripts/mlx/bunny_ea
     { cat "$work/region.log" >&2; exit 1; }
 grep -h '^LOG: .*GeoFilter' "$work/measure.log" "$work/region.log" | sed 's/^LOG: [0-9] /  /' | awk '!seen[$0]++'
 
-n=90
-while [ -e "/tmp/.X$n-lock" ] || [ -e "/tmp/.X11-unix/X$n" ]; do n=$((n + 1)); done
-Xvfb ":$n" -screen 0 1400x900x24 -nolisten tcp >"$work/xvfb.log" 2>&1 &
-pids+=($!)
-export DISPLAY=":$n"
+private_display
 sleep 2
 
 home=$work/home

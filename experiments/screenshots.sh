@@ -38,20 +38,10 @@ for b in "${builds2022[@]}"; do
         { echo "screenshots: ${b%%:*}/ missing: run scripts/test-meshlab2022.sh ${b#*:}" >&2; exit 1; }
 done
 
-work=$(mktemp -d)
-pids=()
-cleanup() {
-    for p in "${pids[@]}"; do kill "$p" 2>/dev/null || true; done
-    rm -rf "$work"
-}
-trap cleanup EXIT
+# shellcheck source=experiments/screenshot-display.sh
+source "$top/experiments/screenshot-display.sh"
 
-# A private display: the first free number from 90 on.
-n=90
-while [ -e "/tmp/.X$n-lock" ] || [ -e "/tmp/.X11-unix/X$n" ]; do n=$((n + 1)); done
-Xvfb ":$n" -screen 0 1400x900x24 -nolisten tcp >"$work/xvfb.log" 2>&1 &
-pids+=($!)
-export DISPLAY=":$n"
+private_display
 for _ in $(seq 50); do xdotool getdisplaygeometry >/dev/null 2>&1 && break; sleep 0.2; done
 
 # MeshLab 2022+ finds plugins and shaders next to its executable: a private folder with a copy

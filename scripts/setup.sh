@@ -7,7 +7,7 @@ top=$(cd "$(dirname "$0")/.." && pwd)
 packages=(
     build-essential cmake                 # the build
     meshlab                               # MeshLab 2020.09: meshlab, meshlabserver, libmeshlab-common.so
-    dpkg-dev                              # apt-get source / dpkg-source, for MeshLab's headers and vcglib
+    dpkg-dev                              # apt-get source / dpkg-source, for MeshLab's headers and vcglib (the plugin only)
     qtbase5-dev libqt5opengl5-dev libglew-dev   # what MeshLab's headers include
     libeigen3-dev libsuitesparse-dev      # the core: Eigen and CHOLMOD
     libopenblas0-pthread                  # a multithreaded BLAS under CHOLMOD (2x faster factorisation)

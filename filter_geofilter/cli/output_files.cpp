@@ -4,8 +4,6 @@
 
 #include <unistd.h>
 
-#include <algorithm>
-#include <cctype>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -37,11 +35,9 @@ std::string PendingOutputs::reserve(const std::string& destination) {
     if (!fs::is_directory(dir, ec)) throw Error("cannot write '" + destination + "': no directory " + dir.string());
     if (access(dir.c_str(), W_OK) != 0)
         throw Error("cannot write '" + destination + "': directory " + dir.string() + " is not writable");
-    // Hidden, and unique per process and per call, so parallel runs never share one.
-    // vcglib's Exporter misreads an upper-case extension (its tolower stops one short of the
-    // end, so ".PLY" is unknown): the temporary gets it in lower case, the rename restores it.
-    std::string extension = dest.extension().string();
-    std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    // Hidden, and unique per process and per call, so parallel runs never share one; the
+    // extension stays, as the writer picks the format by it.
+    const std::string extension = dest.extension().string();
     const fs::path temporary = dir / ("." + dest.stem().string() + ".geofilter-" + std::to_string(getpid()) + "-" +
                                       std::to_string(entries_.size()) + extension);
     entries_.push_back({temporary.string(), destination});

@@ -1,6 +1,6 @@
 // The rules of the Denoise filter: which Butterworth lowpass, on which operator, from what
 // the user gives (a selected bump) or from the mesh alone. The constants were chosen by
-// measurement (scripts/compare_denoise.py, docs/results.md), not tuned per mesh.
+// measurement (experiments/compare_denoise.py, docs/results.md), not tuned per mesh.
 #pragma once
 
 #include "butterworth.h"

@@ -13,6 +13,7 @@ import tempfile
 
 import numpy as np
 from reference_design import eq15_gain  # noqa: F401 (used as harness.eq15_gain)
+from shapes import icosphere  # noqa: F401 (tests/support; used as harness.icosphere)
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 DEFAULT_TOOL = os.path.join(HERE, "..", "..", "build", "filter_geofilter", "cli", "geofilter")
@@ -56,37 +57,6 @@ def workdir(test_id):
     shutil.rmtree(d, ignore_errors=True)
     os.makedirs(d)
     return d
-
-
-# ---------------------------------------------------------------------------------------------
-# Test meshes
-
-def icosphere(levels, radius=1.0, center=(0.0, 0.0, 0.0)):
-    """Icosahedron, each triangle split in four `levels` times, projected on the sphere."""
-    t = (1 + 5 ** 0.5) / 2
-    verts = [(-1, t, 0), (1, t, 0), (-1, -t, 0), (1, -t, 0), (0, -1, t), (0, 1, t), (0, -1, -t), (0, 1, -t),
-             (t, 0, -1), (t, 0, 1), (-t, 0, -1), (-t, 0, 1)]
-    verts = [np.array(v, float) / np.linalg.norm(v) for v in verts]
-    faces = [(0, 11, 5), (0, 5, 1), (0, 1, 7), (0, 7, 10), (0, 10, 11), (1, 5, 9), (5, 11, 4), (11, 10, 2),
-             (10, 7, 6), (7, 1, 8), (3, 9, 4), (3, 4, 2), (3, 2, 6), (3, 6, 8), (3, 8, 9), (4, 9, 5), (2, 4, 11),
-             (6, 2, 10), (8, 6, 7), (9, 8, 1)]
-    for _ in range(levels):
-        midpoint = {}
-
-        def mid(a, b):
-            key = (min(a, b), max(a, b))
-            if key not in midpoint:
-                m = verts[a] + verts[b]
-                verts.append(m / np.linalg.norm(m))
-                midpoint[key] = len(verts) - 1
-            return midpoint[key]
-
-        new_faces = []
-        for a, b, c in faces:
-            ab, bc, ca = mid(a, b), mid(b, c), mid(c, a)
-            new_faces += [(a, ab, ca), (b, bc, ab), (c, ca, bc), (ab, bc, ca)]
-        faces = new_faces
-    return np.array(verts) * radius + np.asarray(center, float), np.array(faces, dtype=np.int64)
 
 
 # ---------------------------------------------------------------------------------------------

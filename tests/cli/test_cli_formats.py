@@ -1,4 +1,4 @@
-"""PLY, OBJ, OFF and STL in and out through vcglib, and PLY's stored face selection.
+"""PLY, OBJ, OFF and STL in and out through the tool's readers and writers, and PLY's stored face selection.
 
 STL stores every triangle with its own three corners: the tool welds bit-identical corners
 on reading (the filter needs a connected mesh) and writes three corners per triangle again.
@@ -51,12 +51,12 @@ class FormatTest(unittest.TestCase):
                     np.testing.assert_allclose(got, unique_rows(self.expected, 5), atol=2e-5)
                 else:
                     self.assertEqual(len(m.vertices), len(self.v))
-                    # OBJ is written with 6 decimals by vcglib; PLY (double) and OFF keep everything.
+                    # OBJ and OFF are written with 17 significant digits, PLY in double.
                     np.testing.assert_allclose(m.vertices, self.expected, atol=2e-6 if ext == "obj" else 1e-12)
 
     def test_obj_faces_around_the_first_vertex_and_polygons(self):
-        # A cube: quads (triangulated by vcglib), v/vt/vn and v//vn corners, relative indices,
-        # and vertex 1 in three faces (the 2020.09 vcglib would drop those: MeshLab issue #791).
+        # A cube: quads (triangulated on reading), v/vt/vn and v//vn corners, relative indices,
+        # and vertex 1 in three faces (the 2020.09 vcglib the tool once used dropped those: MeshLab issue #791).
         source = os.path.join(self.dir, "cube.obj")
         with open(source, "w") as f:
             f.write("# cube\n")
