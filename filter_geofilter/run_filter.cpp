@@ -273,7 +273,7 @@ RunOutput run_filter(const FilterSpec& spec, const ParameterValues& values, cons
     options.op = out.op;
     const int region = spec.parameter(param::region) ? choice_of(spec, values, param::region) : 0;
     if (region == 0) {
-        out.points = apply_filter(input.points, input.triangles, out.transfer, options, &out.report);
+        out.points = apply_filter(input.points, input.triangles, out.transfer, options, &out.report, input.cache);
     } else {
         // The umbrella operator's frequencies are per vertex, not 1/length^2: no feature
         // radius follows from them, so its blend band must be given.
@@ -296,6 +296,7 @@ RunOutput run_filter(const FilterSpec& spec, const ParameterValues& values, cons
                       " of the bounding-box diagonal (error bound), relative residual " + num(r.relative_residual) +
                       "; time " + num(r.seconds_total) + " s (assembly " + num(r.seconds_assembly) + ", factorisation " +
                       num(r.seconds_factorization) + ", solve " + num(r.seconds_solve) + ")");
+    if (!r.reused.empty()) out.log.push_back("reused from the previous run on this mesh: " + r.reused);
     return out;
 }
 
