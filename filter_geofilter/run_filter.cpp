@@ -1,4 +1,6 @@
 #include "run_filter.h"
+
+#include "core/bump_base.h"
 #include "run_region.h"
 #include "core/ellipsoid_view.h"
 #include "core/icosphere.h"
@@ -274,7 +276,17 @@ RunOutput run_filter(const FilterSpec& spec, const ParameterValues& values, cons
     options.op = out.op;
     const int region = spec.parameter(param::region) ? choice_of(spec, values, param::region) : 0;
     if (region == 0) {
-        out.points = apply_filter(input.points, input.triangles, out.transfer, options, &out.report);
+        out.points = apply_filter(input.points, input.triangles, out.transfer, options, &out.report, input.cache);
+        if (spec.kind == FilterKind::Denoise && out.feature) {
+            BumpBaseReport base;
+            out.points = lower_onto_bump_base(input.points, out.points, input.triangles, input.selected_faces,
+                                              denoise_radius_factor * out.feature->radius, &base);
+            out.log.push_back(base.side == 0 ? std::string("the selected bump has no height: the surface was not moved")
+                                             : std::string("bumps removed down to their base (the selected one points ") +
+                                                   (base.side > 0 ? "outwards" : "inwards") + "): the surface moved by " +
+                                                   num(base.mean_offset) + " on average, at most " +
+                                                   num(base.largest_offset));
+        }
     } else {
         // The umbrella operator's frequencies are per vertex, not 1/length^2: no feature
         // radius follows from them, so its blend band must be given.
@@ -297,6 +309,7 @@ RunOutput run_filter(const FilterSpec& spec, const ParameterValues& values, cons
                       " of the bounding-box diagonal (error bound), relative residual " + num(r.relative_residual) +
                       "; time " + num(r.seconds_total) + " s (assembly " + num(r.seconds_assembly) + ", factorisation " +
                       num(r.seconds_factorization) + ", solve " + num(r.seconds_solve) + ")");
+    if (!r.reused.empty()) out.log.push_back("reused from the previous run on this mesh: " + r.reused);
     return out;
 }
 

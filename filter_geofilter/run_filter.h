@@ -26,6 +26,9 @@ struct RunInput {
     ProgressCallback progress;
     // Per-vertex quality, for region = quality as weight (null or empty: the mesh has none).
     const std::vector<double>* vertex_quality = nullptr;
+    // Kept by an adapter whose user reruns filters on the same mesh (MeshLab's Preview);
+    // null: nothing is kept between runs.
+    FilterCache* cache = nullptr;
 };
 
 struct RunOutput {

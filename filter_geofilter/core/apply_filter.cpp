@@ -2,6 +2,7 @@
 #include "pcg.h"
 #include "components.h"
 #include "mesh_prep.h"
+#include "shifted_cholesky.h"
 #include "solvers.h"
 
 #include <algorithm>
@@ -10,12 +11,13 @@
 #include <cstdio>
 #include <fstream>
 #include <new>
+#include <optional>
 
 namespace geofilter {
 
 namespace {
 Points apply_filter_unguarded(const Points& points, const Triangles& triangles, const TransferFunction& g,
-                              const FilterOptions& options, FilterReport* report_out);
+                              const FilterOptions& options, FilterReport* report_out, FilterCache* cache);
 } // namespace
 
 const char* solver_name(Solver solver) {
@@ -82,11 +84,62 @@ void report_progress(const FilterOptions& options, double fraction, const std::s
 }
 } // namespace detail
 
+namespace detail {
+
+// Everything a filter run builds before it looks at the transfer function.
+struct MeshStage {
+    // What it was built from.
+    Points input_points;
+    Triangles input_triangles;
+    Operator op;
+    bool fix_boundary;
+
+    PreparedMesh mesh;
+    Laplacian laplacian;
+    std::vector<int> component;
+    int components = 0;
+    Eigen::MatrixXd centroids;
+    double size = 0;
+    std::vector<bool> on_boundary;  // empty unless fix_boundary
+    int fixed_vertices = 0;
+    std::vector<std::string> warnings;
+    // What the solver filters: the centred coordinates with the whole Laplacian, or, with
+    // the boundary fixed, the detail above the harmonic extension with the interior's
+    // Dirichlet Laplacian.
+    Eigen::MatrixXd centred, harmonic, solved_coordinates;
+    std::optional<Laplacian> interior;
+    std::unique_ptr<FactorState> factors;
+
+    struct Result {
+        TransferFunction g;
+        Solver solver;
+        double tolerance;
+        int max_iterations;
+        Points points;
+        FilterReport report;
+    };
+    std::optional<Result> last;
+
+    const Laplacian& solved_laplacian() const { return interior ? *interior : laplacian; }
+
+    bool built_from(const Points& points, const Triangles& triangles, const FilterOptions& options) const {
+        return op == options.op && fix_boundary == options.fix_boundary && input_points.rows() == points.rows() &&
+               input_triangles.rows() == triangles.rows() && input_points == points && input_triangles == triangles;
+    }
+};
+
+} // namespace detail
+
+FilterCache::FilterCache(Eigen::Index max_vertices) : max_vertices_(max_vertices) {}
+FilterCache::~FilterCache() = default;
+void FilterCache::clear() { stage_.reset(); }
+
 Points apply_filter(const Points& points, const Triangles& triangles, const TransferFunction& g,
-                    const FilterOptions& options, FilterReport* report_out) {
+                    const FilterOptions& options, FilterReport* report_out, FilterCache* cache) {
     try {
-        return apply_filter_unguarded(points, triangles, g, options, report_out);
+        return apply_filter_unguarded(points, triangles, g, options, report_out, cache);
     } catch (const std::bad_alloc&) {
+        if (cache) cache->clear();
         throw Error("out of memory while filtering " + std::to_string(points.rows()) +
                     " vertices: close other programs, or simplify the mesh first");
     }
@@ -94,82 +147,138 @@ Points apply_filter(const Points& points, const Triangles& triangles, const Tran
 
 namespace {
 
-Points apply_filter_unguarded(const Points& points, const Triangles& triangles, const TransferFunction& g,
-                              const FilterOptions& options, FilterReport* report_out) {
-    const auto t0 = std::chrono::steady_clock::now();
-    detail::check_filter_options(g, options);
+bool same_function(const TransferFunction& a, const TransferFunction& b) {
+    auto same_coefficients = [](const std::optional<SecondOrderCoefficients>& x,
+                                const std::optional<SecondOrderCoefficients>& y) {
+        if (x.has_value() != y.has_value()) return false;
+        return !x || (x->a0 == y->a0 && x->a1 == y->a1 && x->a2 == y->a2 && x->b0 == y->b0 && x->b1 == y->b1 &&
+                      x->b2 == y->b2);
+    };
+    return a.gain == b.gain && a.numerator == b.numerator && a.poles == b.poles &&
+           same_coefficients(a.second_order, b.second_order);
+}
 
-    const double budget = options.memory_budget_bytes > 0 ? options.memory_budget_bytes : available_memory_bytes();
-    if (budget > 0 && estimated_filter_bytes(points.rows()) > budget)
-        throw Error("the mesh is too large for the memory available: filtering " + std::to_string(points.rows()) +
-                    " vertices needs about " + gib(estimated_filter_bytes(points.rows())) + ", only " + gib(budget) +
-                    " is available; simplify the mesh or free memory");
-
-    FilterReport report;
-    report.solver = options.solver;
-    const PreparedMesh mesh = prepare_mesh(points, triangles);
-    report.warnings = mesh.warnings;
-    report.active_vertices = static_cast<int>(mesh.active_vertex.size());
+std::unique_ptr<detail::MeshStage> build_mesh_stage(const Points& points, const Triangles& triangles,
+                                                    const FilterOptions& options, bool keep_input) {
+    auto stage = std::make_unique<detail::MeshStage>();
+    detail::MeshStage& st = *stage;
+    if (keep_input) {
+        st.input_points = points;
+        st.input_triangles = triangles;
+    }
+    st.op = options.op;
+    st.fix_boundary = options.fix_boundary;
+    st.mesh = prepare_mesh(points, triangles);
+    st.warnings = st.mesh.warnings;
+    const PreparedMesh& mesh = st.mesh;
 
     detail::report_progress(options, 0.0, "assembling the Laplacian");
-    const Laplacian laplacian = build_laplacian(options.op, mesh.points, mesh.triangles);
+    st.laplacian = build_laplacian(options.op, mesh.points, mesh.triangles);
     // Each connected component is centred on its own area-weighted centroid. The constant
     // functions of a component are its eigenmodes at s = 0, so a filter scales the component
     // about that point: centring on one global centroid would let G0 != 1 pull the components
     // together. Centring also keeps the result independent of where the origin is, and free
     // of cancellation on meshes far from it.
-    const std::vector<int> component = connected_components(mesh.triangles, mesh.points.rows());
-    const int components = component_count(component);
-    Eigen::MatrixXd centroids = Eigen::MatrixXd::Zero(components, 3);
-    Eigen::VectorXd component_area = Eigen::VectorXd::Zero(components);
+    st.component = connected_components(mesh.triangles, mesh.points.rows());
+    st.components = component_count(st.component);
+    st.centroids = Eigen::MatrixXd::Zero(st.components, 3);
+    Eigen::VectorXd component_area = Eigen::VectorXd::Zero(st.components);
     for (Eigen::Index i = 0; i < mesh.points.rows(); ++i) {
-        centroids.row(component[i]) += laplacian.mass[i] * mesh.points.row(i);
-        component_area[component[i]] += laplacian.mass[i];
+        st.centroids.row(st.component[i]) += st.laplacian.mass[i] * mesh.points.row(i);
+        component_area[st.component[i]] += st.laplacian.mass[i];
     }
-    centroids.array().colwise() /= component_area.array();
-    Eigen::MatrixXd centred = mesh.points;
-    for (Eigen::Index i = 0; i < mesh.points.rows(); ++i) centred.row(i) -= centroids.row(component[i]);
-    report.components = components;
+    st.centroids.array().colwise() /= component_area.array();
+    st.centred = mesh.points;
+    for (Eigen::Index i = 0; i < mesh.points.rows(); ++i) st.centred.row(i) -= st.centroids.row(st.component[i]);
+    st.size = (mesh.points.colwise().maxCoeff() - mesh.points.colwise().minCoeff()).norm();
+
+    if (options.fix_boundary) st.on_boundary = boundary_vertices(mesh.triangles, mesh.points.rows());
+    st.fixed_vertices = static_cast<int>(std::count(st.on_boundary.begin(), st.on_boundary.end(), true));
+    if (st.fixed_vertices == 0) {
+        st.on_boundary.clear();
+        if (options.fix_boundary) st.warnings.push_back("the mesh has no open boundary: nothing to keep fixed");
+        st.solved_coordinates = st.centred;
+        return stage;
+    }
+    if (st.fixed_vertices == static_cast<int>(st.on_boundary.size()))
+        throw Error("every vertex lies on the boundary (a strip one triangle wide): with the boundary fixed there"
+                    " is nothing to filter; turn fixBoundary off");
+    st.harmonic = harmonic_extension(st.laplacian, st.on_boundary, st.centred);
+    std::vector<bool> interior(st.on_boundary.size());
+    for (size_t i = 0; i < interior.size(); ++i) interior[i] = !st.on_boundary[i];
+    st.solved_coordinates.resize(st.centred.rows() - st.fixed_vertices, 3);
+    for (size_t i = 0, k = 0; i < interior.size(); ++i)
+        if (interior[i]) st.solved_coordinates.row(static_cast<Eigen::Index>(k++)) = st.centred.row(i) - st.harmonic.row(i);
+    st.interior = restrict_laplacian(st.laplacian, interior);
+    return stage;
+}
+
+Points apply_filter_unguarded(const Points& points, const Triangles& triangles, const TransferFunction& g,
+                              const FilterOptions& options, FilterReport* report_out, FilterCache* cache) {
+    const auto t0 = std::chrono::steady_clock::now();
+    detail::check_filter_options(g, options);
+
+    const bool cacheable = cache && points.rows() <= cache->max_vertices();
+    std::unique_ptr<detail::MeshStage> local;
+    std::unique_ptr<detail::MeshStage>& slot = cacheable ? cache->stage() : local;
+    if (cache && !cacheable) cache->clear();
+    const bool reuse_mesh = slot && slot->built_from(points, triangles, options);
+    if (!reuse_mesh) {
+        slot.reset();  // free the old mesh's factors before building the new ones
+        const double budget = options.memory_budget_bytes > 0 ? options.memory_budget_bytes : available_memory_bytes();
+        if (budget > 0 && estimated_filter_bytes(points.rows()) > budget)
+            throw Error("the mesh is too large for the memory available: filtering " + std::to_string(points.rows()) +
+                        " vertices needs about " + gib(estimated_filter_bytes(points.rows())) + ", only " + gib(budget) +
+                        " is available; simplify the mesh or free memory");
+        slot = build_mesh_stage(points, triangles, options, cacheable);
+    }
+    detail::MeshStage& st = *slot;
+
+    if (reuse_mesh && st.last && st.last->solver == options.solver && st.last->tolerance == options.tolerance &&
+        st.last->max_iterations == options.max_iterations && same_function(st.last->g, g)) {
+        FilterReport report = st.last->report;
+        report.reused = "result";
+        report.seconds_assembly = report.seconds_factorization = report.seconds_solve = 0;
+        report.iterations = 0;
+        report.seconds_total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        detail::report_progress(options, 1.0, "done");
+        if (report_out) *report_out = std::move(report);
+        return st.last->points;
+    }
+
+    FilterReport report;
+    report.solver = options.solver;
+    report.warnings = st.warnings;
+    report.active_vertices = static_cast<int>(st.mesh.active_vertex.size());
+    report.components = st.components;
+    report.fixed_vertices = st.fixed_vertices;
+    const bool had_factor = st.factors && st.factors->cholesky.has_factor();
     report.seconds_assembly = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
-    const double size = (mesh.points.colwise().maxCoeff() - mesh.points.colwise().minCoeff()).norm();
-    auto solve = [&](const Laplacian& l, const Eigen::MatrixXd& p) {
-        const detail::FilterProblem problem{l, p, g, options, size};
-        return options.solver == Solver::Factored ? detail::solve_factored(problem, report)
-                                                  : detail::solve_jacobi_pcg(problem, report);
-    };
+    detail::FilterProblem problem{st.solved_laplacian(), st.solved_coordinates, g, options, st.size};
+    if (cacheable) problem.factor_slot = &st.factors;
+    const Eigen::MatrixXd solved = options.solver == Solver::Factored ? detail::solve_factored(problem, report)
+                                                                      : detail::solve_jacobi_pcg(problem, report);
+    if (reuse_mesh) report.reused = had_factor && report.seconds_factorization == 0 ? "mesh and factor" : "mesh";
 
     Eigen::MatrixXd filtered;
-    const std::vector<bool> on_boundary =
-        options.fix_boundary ? boundary_vertices(mesh.triangles, mesh.points.rows()) : std::vector<bool>();
-    report.fixed_vertices = static_cast<int>(std::count(on_boundary.begin(), on_boundary.end(), true));
-    if (report.fixed_vertices == 0) {
-        if (options.fix_boundary) report.warnings.push_back("the mesh has no open boundary: nothing to keep fixed");
-        filtered = solve(laplacian, centred);
+    if (st.on_boundary.empty()) {
+        filtered = solved;
     } else {
-        if (report.fixed_vertices == static_cast<int>(on_boundary.size()))
-            throw Error("every vertex lies on the boundary (a strip one triangle wide): with the boundary fixed there"
-                        " is nothing to filter; turn fixBoundary off");
-        const Eigen::MatrixXd harmonic = harmonic_extension(laplacian, on_boundary, centred);
-        std::vector<bool> interior(on_boundary.size());
-        for (size_t i = 0; i < interior.size(); ++i) interior[i] = !on_boundary[i];
-        Eigen::MatrixXd detail_part(centred.rows() - report.fixed_vertices, 3);
-        for (size_t i = 0, k = 0; i < interior.size(); ++i)
-            if (interior[i]) detail_part.row(static_cast<Eigen::Index>(k++)) = centred.row(i) - harmonic.row(i);
-        const Eigen::MatrixXd detail_filtered = solve(restrict_laplacian(laplacian, interior), detail_part);
-        filtered = centred;  // boundary rows stay exactly as they were
-        for (size_t i = 0, k = 0; i < interior.size(); ++i)
-            if (interior[i]) filtered.row(i) = harmonic.row(i) + detail_filtered.row(static_cast<Eigen::Index>(k++));
+        filtered = st.centred;  // boundary rows stay exactly as they were
+        for (size_t i = 0, k = 0; i < st.on_boundary.size(); ++i)
+            if (!st.on_boundary[i]) filtered.row(i) = st.harmonic.row(i) + solved.row(static_cast<Eigen::Index>(k++));
     }
-    for (Eigen::Index i = 0; i < filtered.rows(); ++i) filtered.row(i) += centroids.row(component[i]);
+    for (Eigen::Index i = 0; i < filtered.rows(); ++i) filtered.row(i) += st.centroids.row(st.component[i]);
     if (!filtered.allFinite())
         throw Error("the filter produced non-finite coordinates: the mesh is too degenerate for this filter");
 
     Points result = points;
-    for (size_t i = 0; i < mesh.active_vertex.size(); ++i)
-        if (on_boundary.empty() || !on_boundary[i]) result.row(mesh.active_vertex[i]) = filtered.row(i);
+    for (size_t i = 0; i < st.mesh.active_vertex.size(); ++i)
+        if (st.on_boundary.empty() || !st.on_boundary[i]) result.row(st.mesh.active_vertex[i]) = filtered.row(i);
     report.seconds_total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     detail::report_progress(options, 1.0, "done");
+    if (cacheable) st.last = detail::MeshStage::Result{g, options.solver, options.tolerance, options.max_iterations, result, report};
     if (report_out) *report_out = std::move(report);
     return result;
 }

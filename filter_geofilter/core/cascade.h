@@ -39,4 +39,13 @@ double spectrum_upper_bound(const SparseMatrix& symmetric);
 // can be no smaller, whatever the mesh.
 double pair_operator_lower_bound(std::complex<double> r);
 
+// Bounds low P <= A <= high P for the pair operator A = (Kt - r)(Kt - conj r) and the
+// preconditioner P = (Kt + shift)^2, whatever the mesh: the range of |s - r|^2 / (s + shift)^2
+// over s >= 0. CG on A preconditioned by P needs about sqrt(high / low) times a constant
+// iterations. shift = |r| is the best real shift; then low = sin^2(arg r / 2), high = 1.
+struct PreconditionedRange {
+    double low, high;
+};
+PreconditionedRange pair_preconditioner_range(std::complex<double> r, double shift);
+
 } // namespace geofilter::detail

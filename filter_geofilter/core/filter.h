@@ -2,6 +2,7 @@
 // without eigenvectors.
 #pragma once
 
+#include "filter_cache.h"
 #include "operators.h"
 #include "transfer_function.h"
 #include "types.h"
@@ -59,6 +60,9 @@ struct FilterReport {
     int fixed_vertices = 0;        // boundary vertices kept in place (fix_boundary)
     int components = 0;            // connected components, each filtered about its own centroid
     std::vector<std::string> warnings;  // repairs made to the input, in plain words
+    // What came from a FilterCache: "" (nothing), "mesh" (checks, Laplacian, analysis),
+    // "mesh and factor", or "result" (the same filter as the run before).
+    std::string reused;
 };
 
 // Filters every vertex that belongs to a usable face; other vertices keep their position.
@@ -66,7 +70,9 @@ struct FilterReport {
 // does not depend on where the origin is, G(0) = G0 scales each component about its centroid,
 // and components never pull on each other. Throws Error on bad input, an
 // unstable transfer function, non-convergence or cancellation; never returns a partial result.
+// With a cache, a run on the same mesh (same points, faces, operator and boundary option)
+// reuses what earlier runs built; the result meets the same tolerance either way.
 Points apply_filter(const Points& points, const Triangles& triangles, const TransferFunction& g,
-                    const FilterOptions& options = {}, FilterReport* report = nullptr);
+                    const FilterOptions& options = {}, FilterReport* report = nullptr, FilterCache* cache = nullptr);
 
 } // namespace geofilter

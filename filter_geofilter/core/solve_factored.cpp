@@ -5,14 +5,13 @@
 // the same sparsity: CHOLMOD's symbolic analysis is done once per mesh.
 #include "cascade.h"
 #include "pcg.h"
+#include "shifted_cholesky.h"
 #include "solvers.h"
-
-#include <Eigen/CholmodSupport>
 
 #include <chrono>
 #include <cmath>
 #include <complex>
-#include <optional>
+#include <memory>
 
 namespace geofilter::detail {
 
@@ -35,57 +34,22 @@ void use_amd_ordering(cholmod_common& common) {
 
 namespace {
 
-class ShiftedCholesky {
-public:
-    explicit ShiftedCholesky(const SparseMatrix& kt) : kt_(kt) {
-        use_amd_ordering(llt_.cholmod());
-        llt_.analyzePattern(kt_);
-        if (llt_.cholmod().status == CHOLMOD_OUT_OF_MEMORY) throw std::bad_alloc();
-    }
-
-    // Factorises Kt + shift I unless that factor is already held.
-    void factorize(double shift) {
-        if (shift == shift_) return;
-        llt_.setShift(shift);
-        llt_.factorize(kt_);
-        if (llt_.cholmod().status == CHOLMOD_OUT_OF_MEMORY) throw std::bad_alloc();
-        if (llt_.info() != Eigen::Success)
-            throw Error("the sparse Cholesky factorisation failed (Kt + " + format_number(shift) +
-                        " I is not positive definite): the mesh has inverted or degenerate faces");
-        shift_ = shift;
-    }
-    Eigen::MatrixXd solve(const Eigen::MatrixXd& b) const { return llt_.solve(b); }
-
-private:
-    const SparseMatrix& kt_;
-    Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> llt_;
-    double shift_ = NAN;
-};
-
-} // namespace
-
-namespace {
-
 // The pieces a factored filter is made of, sharing one matrix, one symbolic analysis and
 // one timing report.
 class FactoredStages : public PoleGroupSolver {
 public:
     FactoredStages(const FilterProblem& problem, FilterReport& report)
-        : problem_(problem), report_(report), sqrt_mass_(problem.laplacian.mass.cwiseSqrt()),
-          kt_(mass_normalized_stiffness(problem.laplacian)) {
-        report_progress(problem.options, 0.05, "analysing the sparsity pattern");
-        const auto t = std::chrono::steady_clock::now();
-        cholesky_.emplace(kt_);
-        report_.seconds_factorization += seconds_since(t);
-    }
+        : problem_(problem), report_(report), state_(state_for(problem, report, local_state_)) {}
 
-    const SparseMatrix& kt() const { return kt_; }
-    Eigen::MatrixXd to_scaled(const Eigen::MatrixXd& p) const { return sqrt_mass_.asDiagonal() * p; }
-    Eigen::MatrixXd from_scaled(const Eigen::MatrixXd& y) const { return sqrt_mass_.cwiseInverse().asDiagonal() * y; }
+    const SparseMatrix& kt() const { return state_.kt; }
+    Eigen::MatrixXd to_scaled(const Eigen::MatrixXd& p) const { return state_.sqrt_mass.asDiagonal() * p; }
+    Eigen::MatrixXd from_scaled(const Eigen::MatrixXd& y) const {
+        return state_.sqrt_mass.cwiseInverse().asDiagonal() * y;
+    }
 
     Eigen::MatrixXd polynomial(const std::vector<double>& c, const Eigen::MatrixXd& y) override {
         const auto t = std::chrono::steady_clock::now();
-        Eigen::MatrixXd out = apply_polynomial(kt_, c, y);
+        Eigen::MatrixXd out = apply_polynomial(state_.kt, c, y);
         report_.seconds_solve += seconds_since(t);
         return out;
     }
@@ -95,34 +59,38 @@ public:
         if (r >= 0) throw Error("unstable filter: a pole lies at s = " + format_number(r) + " >= 0");
         factorize(-r, progress);
         const auto t = std::chrono::steady_clock::now();
-        Eigen::MatrixXd solved = cholesky_->solve(y);
-        const Eigen::MatrixXd residual = kt_ * solved - r * solved - y;
+        Eigen::MatrixXd solved = state_.cholesky.solve(y);
+        const Eigen::MatrixXd residual = state_.kt * solved - r * solved - y;
         report_.relative_residual = std::max(report_.relative_residual, residual.norm() / std::max(y.norm(), 1e-300));
         report_.seconds_solve += seconds_since(t);
         return solved;
     }
 
-    // ((Kt - r)(Kt - conj r))^-1 y by CG preconditioned with P = (Kt + |r|)^2. Per eigenvalue
-    // l >= 0 of Kt the ratio |l - r|^2 / (l + |r|)^2 lies in [c, 1], c = sin^2(arg(r)/2), so
-    // the condition number is at most 1/c whatever the mesh. The stopping test is a bound,
-    // not an estimate: with A the pair operator, A >= c P and A >= m I
-    // (m = pair_operator_lower_bound(r)), so |x - A^-1 y|^2 = r' A^-2 r <= r' P^-1 r / (c m).
+    // ((Kt - r)(Kt - conj r))^-1 y by CG preconditioned with P = (Kt + c)^2, c = |r| unless a
+    // factor at another shift is already held and reusing it is predicted to be cheaper than
+    // a new factorisation (a preview run with a changed frequency). With A the pair operator,
+    // low P <= A <= high P (pair_preconditioner_range), and A >= m I
+    // (m = pair_operator_lower_bound(r)), so the stopping test is a bound, not an estimate:
+    // |x - A^-1 y|^2 = r' A^-2 r <= r' P^-1 r / (low m). For c = |r|, low = sin^2(arg r / 2)
+    // and high = 1 on any mesh.
     Eigen::MatrixXd conjugate_pair(std::complex<double> r, const Eigen::MatrixXd& y, double allowed_error,
                                    double progress) override {
-        const double modulus = std::abs(r), twice_re = 2 * r.real(), modulus2 = std::norm(r);
-        factorize(modulus, progress);
+        const double twice_re = 2 * r.real(), modulus2 = std::norm(r);
+        const double shift = preconditioner_shift(r);
+        factorize(shift, progress);
         const auto t = std::chrono::steady_clock::now();
+        const SparseMatrix& kt = state_.kt;
         const BlockOperator quadratic = [&](const Eigen::MatrixXd& in, Eigen::MatrixXd& out) {
-            const Eigen::MatrixXd k_in = kt_ * in;
-            out = kt_ * k_in;
+            const Eigen::MatrixXd k_in = kt * in;
+            out = kt * k_in;
             out -= twice_re * k_in;
             out += modulus2 * in;
         };
         const BlockOperator preconditioner = [&](const Eigen::MatrixXd& in, Eigen::MatrixXd& out) {
-            out = cholesky_->solve(cholesky_->solve(in));
+            out = state_.cholesky.solve(state_.cholesky.solve(in));
         };
-        const double sin_half = std::sin(0.5 * std::abs(std::arg(r)));
-        const double lower = sin_half * sin_half * pair_operator_lower_bound(r);
+        const PreconditionedRange range = pair_preconditioner_range(r, shift);
+        const double lower = range.low * pair_operator_lower_bound(r);
         const ErrorBound bound = [&](const Eigen::MatrixXd&, const Eigen::ArrayXd& rz) {
             return std::sqrt(std::max(rz.sum(), 0.0) / lower);
         };
@@ -132,23 +100,65 @@ public:
             block_pcg(quadratic, preconditioner, y, x, bound, allowed_error, options.max_iterations,
                       [&](int, double) { return !options.progress || options.progress(progress, "solving"); });
         record_pcg_outcome(outcome, allowed_error, "raise maxIterations or the tolerance", report_);
-        report_.seconds_solve += seconds_since(t);
+        const double seconds = seconds_since(t);
+        report_.seconds_solve += seconds;
+        if (outcome.iterations > 0) {
+            state_.seconds_per_pair_iteration = seconds / outcome.iterations;
+            state_.last_pair_iterations = outcome.iterations;
+            state_.last_pair_condition = range.high / range.low;
+        }
         return x;
     }
 
 private:
+    // The cache's state when the problem brings a slot for one, else a state of this run's
+    // own; built (the symbolic analysis) when the slot is empty.
+    static FactorState& state_for(const FilterProblem& problem, FilterReport& report,
+                                  std::unique_ptr<FactorState>& local) {
+        std::unique_ptr<FactorState>& slot = problem.factor_slot ? *problem.factor_slot : local;
+        if (!slot) {
+            report_progress(problem.options, 0.05, "analysing the sparsity pattern");
+            const auto t = std::chrono::steady_clock::now();
+            slot = std::make_unique<FactorState>(problem.laplacian);
+            report.seconds_factorization += seconds_since(t);
+        }
+        return *slot;
+    }
+
+    // |r| (the fewest iterations) unless the held factor is predicted to finish sooner: CG
+    // iterations scale with sqrt(high / low) of the preconditioned range, calibrated by the
+    // last pair solve on this state.
+    double preconditioner_shift(std::complex<double> r) const {
+        const double ideal = std::abs(r);
+        const ShiftedCholesky& cholesky = state_.cholesky;
+        if (!cholesky.has_factor() || cholesky.shift() == ideal || state_.seconds_per_pair_iteration <= 0 ||
+            state_.seconds_per_factorization <= 0 || state_.last_pair_iterations <= 0)
+            return ideal;
+        auto predicted_seconds = [&](double shift) {
+            const PreconditionedRange range = pair_preconditioner_range(r, shift);
+            const double iterations =
+                state_.last_pair_iterations * std::sqrt(range.high / range.low / state_.last_pair_condition);
+            return iterations * state_.seconds_per_pair_iteration;
+        };
+        const double held = predicted_seconds(cholesky.shift());
+        const double fresh = state_.seconds_per_factorization + predicted_seconds(ideal);
+        return held < fresh ? cholesky.shift() : ideal;
+    }
+
     void factorize(double shift, double progress) {
+        if (state_.cholesky.has_factor() && state_.cholesky.shift() == shift) return;
         report_progress(problem_.options, progress, "factorising");
         const auto t = std::chrono::steady_clock::now();
-        cholesky_->factorize(shift);
-        report_.seconds_factorization += seconds_since(t);
+        state_.cholesky.factorize(shift);
+        const double seconds = seconds_since(t);
+        state_.seconds_per_factorization = seconds;
+        report_.seconds_factorization += seconds;
     }
 
     const FilterProblem& problem_;
     FilterReport& report_;
-    Eigen::VectorXd sqrt_mass_;
-    SparseMatrix kt_;
-    std::optional<ShiftedCholesky> cholesky_;
+    std::unique_ptr<FactorState> local_state_;
+    FactorState& state_;
 };
 
 } // namespace

@@ -7,7 +7,11 @@
 
 #include <cholmod.h>
 
+#include <memory>
+
 namespace geofilter::detail {
+
+struct FactorState;
 
 // Inputs shared by the solvers. `coordinates` are centred; `laplacian` has positive mass
 // at every vertex.
@@ -17,6 +21,9 @@ struct FilterProblem {
     const TransferFunction& g;
     const FilterOptions& options;
     double size;  // bounding-box diagonal of the filtered vertices
+    // Where the factored solver finds (or leaves) its Kt and factors for `laplacian`, so that
+    // a later run on the same mesh can reuse them; null: built and dropped within the run.
+    std::unique_ptr<FactorState>* factor_slot = nullptr;
 };
 
 // The error the solvers may leave, as a Frobenius norm in the frame q = M^1/2 p: there it is

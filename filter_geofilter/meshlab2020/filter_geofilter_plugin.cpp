@@ -86,7 +86,7 @@ bool FilterGeoFilterPlugin::applyFilter(QAction *a, MeshDocument &md, const Rich
 	MeshModel *m = md.mm();
 	if (m == nullptr) return fail("there is no current mesh: open or create a mesh first");
 	try {
-		const bridge::FilterRun run = bridge::runOnMesh(s, m->cm, par, cb);
+		const bridge::FilterRun run = bridge::runOnMesh(s, m->cm, par, cb, cache_);
 		const bridge::CoreMesh &mesh = run.mesh;
 		const geofilter::RunOutput &out = run.out;
 

@@ -4,6 +4,8 @@
 #ifndef GEOFILTER_MESHLAB2020_PLUGIN_H
 #define GEOFILTER_MESHLAB2020_PLUGIN_H
 
+#include "core/filter_cache.h"
+
 #include <QObject>
 #include <common/interfaces.h>
 
@@ -37,6 +39,8 @@ public:
 private:
 	const geofilter::FilterSpec &spec(QAction *a) const;
 	bool fail(const std::string &message);
+	// Preview reruns a filter on the same mesh: what does not depend on the parameters is kept.
+	geofilter::FilterCache cache_;
 };
 
 #endif

@@ -108,7 +108,7 @@ std::map<std::string, QVariant> FilterGeoFilterPlugin::applyFilter(const QAction
 	if (m == nullptr) throw MLException("GeoFilter: there is no current mesh: open or create a mesh first");
 	std::map<std::string, QVariant> result;
 	try {
-		const bridge::FilterRun run = bridge::runOnMesh(s, m->cm, par, cb);
+		const bridge::FilterRun run = bridge::runOnMesh(s, m->cm, par, cb, cache_);
 		const bridge::CoreMesh &mesh = run.mesh;
 		const geofilter::RunOutput &out = run.out;
 

@@ -7,6 +7,8 @@
 #ifndef GEOFILTER_MESHLAB2022_PLUGIN_H
 #define GEOFILTER_MESHLAB2022_PLUGIN_H
 
+#include "core/filter_cache.h"
+
 #include <QObject>
 #include <common/plugins/interfaces/filter_plugin.h>
 
@@ -43,6 +45,8 @@ public:
 
 private:
 	const geofilter::FilterSpec &spec(const QAction *a) const;
+	// Preview reruns a filter on the same mesh: what does not depend on the parameters is kept.
+	geofilter::FilterCache cache_;
 };
 
 #endif

@@ -165,14 +165,15 @@ struct FilterRun
 	RunOutput out;
 };
 
-inline FilterRun runOnMesh(const FilterSpec &spec, CMeshO &cm, const RichParameterList &par, vcg::CallBackPos *cb)
+inline FilterRun runOnMesh(const FilterSpec &spec, CMeshO &cm, const RichParameterList &par, vcg::CallBackPos *cb,
+                           FilterCache &cache)
 {
 	FilterRun run;
 	run.mesh = copyMesh(cm);
 	const ParameterValues values = readValues(spec, par, !run.mesh.selectedFaces.empty());
 	run.out = run_filter(spec, values,
 	                     RunInput{run.mesh.points, run.mesh.triangles, run.mesh.selectedFaces, progressFor(cb, spec),
-	                              &run.mesh.quality});
+	                              &run.mesh.quality, &cache});
 	return run;
 }
 

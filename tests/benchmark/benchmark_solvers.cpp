@@ -2,6 +2,7 @@
 // cheapest implicit filter (one M + hK solve), and vcglib's Taubin smoothing, on meshes
 // of ~10k, ~100k and ~1M vertices normalised to unit bounding-box diagonal.
 // Every case runs in a forked child so that its peak memory is its own.
+#include "core/butterworth.h"
 #include "core/filter.h"
 #include "core/laplace.h"
 #include "core/region.h"
@@ -228,6 +229,47 @@ int region_rows(const std::vector<std::function<NamedMesh()>>& makers, const std
     return 0;
 }
 
+// What MeshLab's Preview costs: through one FilterCache, a first lowpass, the same lowpass
+// with s1 and s2 10% higher (a parameter change in the dialog), then that filter again
+// (Apply after the preview). In a child process, like every case.
+std::string preview_row(const std::string& name, const Mesh& m) {
+    struct Times {
+        double first = 0, changed = 0, again = 0;
+        char changed_reuse[32] = {0}, again_reuse[32] = {0};
+    };
+    Times times;
+    int fds[2];
+    if (pipe(fds) != 0) throw std::runtime_error("pipe failed");
+    const pid_t pid = fork();
+    if (pid == 0) {
+        close(fds[0]);
+        FilterCache cache;
+        FilterReport report;
+        apply_filter(m.points, m.triangles, design_second_order({25, 50, 1, 1.1, 0}), {}, &report, &cache);
+        times.first = report.seconds_total;
+        apply_filter(m.points, m.triangles, design_second_order({27.5, 55, 1, 1.1, 0}), {}, &report, &cache);
+        times.changed = report.seconds_total;
+        std::snprintf(times.changed_reuse, sizeof times.changed_reuse, "%s", report.reused.c_str());
+        apply_filter(m.points, m.triangles, design_second_order({27.5, 55, 1, 1.1, 0}), {}, &report, &cache);
+        times.again = report.seconds_total;
+        std::snprintf(times.again_reuse, sizeof times.again_reuse, "%s", report.reused.c_str());
+        if (write(fds[1], &times, sizeof times) != static_cast<ssize_t>(sizeof times)) _exit(2);
+        _exit(0);
+    }
+    close(fds[1]);
+    const ssize_t got = read(fds[0], &times, sizeof times);
+    close(fds[0]);
+    int status = 0;
+    waitpid(pid, &status, 0);
+    std::ostringstream row;
+    row << "| " << name << " | " << m.points.rows() << " | ";
+    if (got != static_cast<ssize_t>(sizeof times)) row << "failed (status " << status << ") ||||||\n";
+    else
+        row << fmt(times.first, 3) << " | " << fmt(times.changed, 3) << " | " << times.changed_reuse << " | "
+            << fmt(times.again, 3) << " | " << times.again_reuse << " |\n";
+    return row.str();
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -295,11 +337,17 @@ int main(int argc, char** argv) {
 
     struct Preset {
         const char* name;
-        SecondOrderSpec spec;
+        TransferFunction g;
+        double s1;  // the floor solves K + M / s1
     };
-    const Preset presets[] = {{"lowpass", {25, 50, 1, 1.1, 0}},
-                              {"band exaggeration", {25, 60, 1, 3, 0}},
-                              {"notch", {630, 1260, 1, 0.01, 1.1}}};
+    const Preset presets[] = {{"lowpass", design_second_order({25, 50, 1, 1.1, 0}), 25},
+                              {"band exaggeration", design_second_order({25, 60, 1, 3, 0}), 25},
+                              {"notch", design_second_order({630, 1260, 1, 0.01, 1.1}), 630},
+                              {"Butterworth n = 4", design_butterworth_lowpass(25, 4), 25},
+                              {"Butterworth n = 8", design_butterworth_lowpass(25, 8), 25}};
+    std::ostringstream preview;
+    preview << "| mesh | vertices | first lowpass (s) | s1, s2 +10% (s) | reused | same again, Apply (s) | reused |\n"
+            << "|---|---:|---:|---:|---|---:|---|\n";
 
     std::ostringstream table, csv;
     table << "| mesh | vertices | filter | fast: assembly | factor | solve | total (s) | peak MiB | PCG time (s) | PCG it. | PCG / fast | floor (s) | fast / floor | Taubin x50 (s) |\n"
@@ -312,11 +360,16 @@ int main(int argc, char** argv) {
         normalise(nm.mesh);
         const Mesh& m = nm.mesh;
         const double taubin_s = in_child([&](CaseResult& r) { r.taubin_seconds = taubin(m, 50); }).taubin_seconds;
+        if (m.points.rows() <= FilterCache().max_vertices()) {
+            const std::string row = preview_row(nm.name, m);
+            preview << row;
+            std::cout << row << std::flush;
+        }
         for (const Preset& p : presets) {
-            const TransferFunction g = design_second_order(p.spec);
+            const TransferFunction& g = p.g;
             const bool lowpass = std::string(p.name) == "lowpass";
             const double budget = (lowpass && m.points.rows() < 120000) ? pcg_full_budget : pcg_budget;
-            const CaseResult floor = in_child([&](CaseResult& r) { r.floor_seconds = floor_solve(m, 1.0 / p.spec.s1); });
+            const CaseResult floor = in_child([&](CaseResult& r) { r.floor_seconds = floor_solve(m, 1.0 / p.s1); });
             const CaseResult r = in_child([&](CaseResult& r) {
                 FilterReport report;
                 const Points fast = apply_filter(m.points, m.triangles, g, {}, &report);
@@ -365,6 +418,7 @@ int main(int argc, char** argv) {
     if (std::system(mkdir.c_str()) != 0) return 1;
     std::ofstream(out_dir + "/benchmark.md") << table.str();
     std::ofstream(out_dir + "/benchmark.dat") << csv.str();
-    std::cout << "\nwrote " << out_dir << "/benchmark.md and benchmark.dat\n";
+    std::ofstream(out_dir + "/preview.md") << preview.str();
+    std::cout << "\n" << preview.str() << "\nwrote " << out_dir << "/benchmark.md, benchmark.dat and preview.md\n";
     return 0;
 }

@@ -1,0 +1,52 @@
+// Sparse Cholesky factors of Kt + shift I that share one symbolic analysis: every shift has
+// the same sparsity, so the fill-reducing ordering is computed once per Laplacian, and a
+// factor stays available for the next solve (or the next filter run) at the same shift.
+// Internal to the core.
+#pragma once
+
+#include "laplace.h"
+
+#include <Eigen/CholmodSupport>
+
+#include <cmath>
+
+namespace geofilter::detail {
+
+class ShiftedCholesky {
+public:
+    // Analyses `kt`'s pattern; `kt` must outlive this object.
+    explicit ShiftedCholesky(const SparseMatrix& kt);
+    ShiftedCholesky(const ShiftedCholesky&) = delete;
+    ShiftedCholesky& operator=(const ShiftedCholesky&) = delete;
+
+    // Makes the factor of Kt + shift I current, computing it unless it is already held.
+    void factorize(double shift);
+    bool has_factor() const { return !std::isnan(shift_); }
+    double shift() const { return shift_; }
+    Eigen::MatrixXd solve(const Eigen::MatrixXd& b) const { return llt_.solve(b); }
+
+private:
+    const SparseMatrix& kt_;
+    Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> llt_;
+    double shift_ = NAN;
+};
+
+// What the factored solver builds for one Laplacian before any filter-specific work: the
+// symmetric frame q = M^1/2 p, Kt, and its analysed factorisation. A FilterCache keeps it
+// between runs on the same mesh, with the costs measured so far, which decide whether a
+// held factor at another shift is worth reusing as a preconditioner.
+struct FactorState {
+    explicit FactorState(const Laplacian& laplacian);
+    FactorState(const FactorState&) = delete;
+    FactorState& operator=(const FactorState&) = delete;
+
+    Eigen::VectorXd sqrt_mass;
+    SparseMatrix kt;
+    ShiftedCholesky cholesky;       // constructed after kt: analyses its pattern
+    double seconds_per_factorization = 0;   // the last numeric factorisation; 0 = none yet
+    double seconds_per_pair_iteration = 0;  // the last conjugate-pair CG run; 0 = none yet
+    int last_pair_iterations = 0;           // its iterations
+    double last_pair_condition = 0;         // and its preconditioned range's high / low
+};
+
+} // namespace geofilter::detail

@@ -1,0 +1,137 @@
+// Reuse between runs (MeshLab's Preview): a cached run must meet the same tolerance as a
+// fresh one, against the dense spectral filter, whatever was reused, including a factor
+// held at a shift other than |r|, whose error bound comes from pair_preconditioner_range.
+#include "core/cascade.h"
+#include "core/filter.h"
+#include "core/mesh_prep.h"
+#include "core/shifted_cholesky.h"
+#include "core/solvers.h"
+#include "real_mesh.h"
+#include "spectral.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace geofilter;
+using namespace geofilter::reference;
+
+namespace {
+
+const Mesh& scan_patch() {
+    static const Mesh patch = patch_of(read_off(GEOFILTER_MESHES "/man.off"), 0, 1500);
+    return patch;
+}
+
+const Spectrum& patch_spectrum() {
+    static const Spectrum spectrum = spectrum_of(scan_patch());
+    return spectrum;
+}
+
+double area_weighted_rms(const Points& difference, const Eigen::VectorXd& mass) {
+    return std::sqrt((mass.array() * difference.rowwise().squaredNorm().array()).sum() / mass.sum());
+}
+
+} // namespace
+
+TEST(FilterCache, PreconditionedRangeBracketsTheSampledRatio) {
+    for (const SecondOrderSpec& spec : {SecondOrderSpec{25, 50, 1, 1.1, 0}, SecondOrderSpec{630, 1260, 1, 0.01, 1.1},
+                                        SecondOrderSpec{25, 60, 1, 3, 0.9}, SecondOrderSpec{10, 25, 1, 30, 0}}) {
+        const std::complex<double> r = design_second_order(spec).poles.at(0);
+        ASSERT_NE(r.imag(), 0);
+        for (double factor : {0.05, 0.3, 1.0, 2.0, 20.0}) {
+            const double shift = factor * std::abs(r);
+            const detail::PreconditionedRange range = detail::pair_preconditioner_range(r, shift);
+            double lo = 1e300, hi = 0;
+            auto sample = [&](double s) {
+                const double f = std::norm(s - r) / ((s + shift) * (s + shift));
+                lo = std::min(lo, f);
+                hi = std::max(hi, f);
+            };
+            sample(0);
+            for (int i = 0; i <= 200000; ++i) sample(std::abs(r) * std::pow(10.0, -6 + 12.0 * i / 200000));
+            SCOPED_TRACE("G1 = " + format_number(spec.G1) + ", shift = " + format_number(factor) + " |r|");
+            EXPECT_LE(range.low, lo * (1 + 1e-12));  // a lower bound ...
+            EXPECT_GE(range.low, lo * (1 - 1e-6));   // ... and the tightest one
+            EXPECT_GE(range.high, hi * (1 - 1e-12));
+            EXPECT_LE(range.high, std::max(hi, 1.0) * (1 + 1e-6));
+            if (factor == 1.0) {
+                EXPECT_NEAR(range.low, std::pow(std::sin(std::arg(r) / 2), 2), 1e-12);
+                EXPECT_NEAR(range.high, 1.0, 1e-12);
+            }
+        }
+    }
+}
+
+TEST(FilterCache, RunsOnTheSameMeshReuseAndStayWithinTolerance) {
+    const Mesh& m = scan_patch();
+    const Spectrum& spectrum = patch_spectrum();
+    const double diag = bbox_diagonal(m.points);
+    FilterCache cache;
+    const std::vector<SecondOrderSpec> sequence = {
+        {25, 50, 1, 1.1, 0}, {30, 60, 1, 1.1, 0}, {25, 60, 1, 3, 0.9}, {630, 1260, 1, 0.01, 1.1}, {25, 50, 1, 1.1, 0}};
+    Points first;
+    for (size_t k = 0; k < sequence.size(); ++k) {
+        const TransferFunction g = design_second_order(sequence[k]);
+        SCOPED_TRACE("run " + std::to_string(k));
+        FilterReport report;
+        const Points out = apply_filter(m.points, m.triangles, g, {}, &report, &cache);
+        EXPECT_LE(area_weighted_rms(out - spectral_filter(spectrum, m.points, g), spectrum.mass), 1e-7 * diag);
+        EXPECT_EQ(report.reused.empty(), k == 0);
+        if (k == 0) first = out;
+    }
+    FilterReport again;
+    const Points repeated = apply_filter(m.points, m.triangles, design_second_order(sequence.back()), {}, &again, &cache);
+    EXPECT_EQ(again.reused, "result");
+    EXPECT_TRUE(repeated == first);  // the first and last runs asked for the same filter
+
+    // Another mesh through the same cache starts afresh.
+    Mesh moved = m;
+    moved.points.col(0) *= 1.5;
+    FilterReport other;
+    const TransferFunction g = design_second_order(sequence[0]);
+    const Points out = apply_filter(moved.points, moved.triangles, g, {}, &other, &cache);
+    EXPECT_EQ(other.reused, "");
+    const Spectrum moved_spectrum = spectrum_of(moved);
+    EXPECT_LE(area_weighted_rms(out - spectral_filter(moved_spectrum, moved.points, g), moved_spectrum.mass),
+              1e-7 * bbox_diagonal(moved.points));
+
+    // A mesh larger than the cache's limit is filtered and not kept.
+    FilterCache small(10);
+    FilterReport uncached;
+    apply_filter(m.points, m.triangles, g, {}, &uncached, &small);
+    apply_filter(m.points, m.triangles, g, {}, &uncached, &small);
+    EXPECT_EQ(uncached.reused, "");
+}
+
+TEST(FilterCache, AHeldFactorAtAnotherShiftStillMeetsTheTolerance) {
+    const Mesh& m = scan_patch();
+    const PreparedMesh prepared = prepare_mesh(m.points, m.triangles);
+    ASSERT_EQ(prepared.points.rows(), m.points.rows());
+    const Spectrum& spectrum = patch_spectrum();
+    const Laplacian laplacian = cotan_laplacian(m.points, m.triangles);
+    const double diag = bbox_diagonal(m.points);
+    for (const SecondOrderSpec& spec : {SecondOrderSpec{25, 50, 1, 1.1, 0}, SecondOrderSpec{25, 60, 1, 3, 0.9}}) {
+        const TransferFunction g = design_second_order(spec);
+        const double ideal = std::abs(g.poles.at(0));
+        for (double factor : {0.2, 5.0}) {
+            SCOPED_TRACE("G1 = " + format_number(spec.G1) + ", held shift = " + format_number(factor) + " |r|");
+            std::unique_ptr<detail::FactorState> state = std::make_unique<detail::FactorState>(laplacian);
+            state->cholesky.factorize(factor * ideal);
+            // Make a new factorisation look prohibitively expensive, so the held one is used.
+            state->seconds_per_factorization = 1e9;
+            state->seconds_per_pair_iteration = 1e-9;
+            state->last_pair_iterations = 1;
+            state->last_pair_condition = 1;
+            FilterOptions options;
+            FilterReport report;
+            const Eigen::MatrixXd coordinates = m.points;
+            detail::FilterProblem problem{laplacian, coordinates, g, options, diag};
+            problem.factor_slot = &state;
+            const Points out = detail::solve_factored(problem, report);
+            EXPECT_EQ(state->cholesky.shift(), factor * ideal);  // no new factor was made
+            EXPECT_GT(report.iterations, 0);
+            EXPECT_LE(area_weighted_rms(out - spectral_filter(spectrum, m.points, g), spectrum.mass), 1e-7 * diag);
+        }
+    }
+}
