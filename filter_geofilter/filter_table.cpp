@@ -183,8 +183,8 @@ FilterSpec butterworth_lowpass() {
 FilterSpec denoise() {
     std::vector<ParameterSpec> p;
     p.push_back({param::use_selection, ParameterType::Bool, 1, "useSelection: remove bumps like the selected one",
-                 "On: the selected faces are one bump of the pattern to remove; bumps of that size and smaller go,"
-                 " larger features and the volume stay (cutoff radius twice the bump's). Off: remove per-vertex"
+                 "On: the selected faces are one bump of the pattern to remove; bumps of that size and smaller go"
+                 " down to the surface they stand on, larger features stay (cutoff radius twice the bump's). Off: remove per-vertex"
                  " sampling noise using only the mesh. Default: on when faces are selected.",
                  {}});
     p.push_back({param::order, ParameterType::Int, 4, "order: steepness n (1-8)",
@@ -197,7 +197,8 @@ FilterSpec denoise() {
             FilterKind::Denoise,
             "Removes noise without tuning. With a selection: select one bump of a pattern (bumps, ripples, a"
             " texture) and every feature of that size and smaller is removed by a 4th-order Butterworth lowpass cut"
-            " at twice the bump's radius; larger features and the volume stay. Without: per-vertex sampling noise"
+            " at twice the bump's radius, and the surface is lowered onto the bumps' base (the pattern's average height"
+            " goes too); larger features stay. Without: per-vertex sampling noise"
             " is removed by the same lowpass on Taubin's umbrella operator, cut at a fixed per-vertex frequency.",
             p};
 }
