@@ -1,7 +1,8 @@
 // Solver benchmark (issue 3): the factored solver against the paper's Jacobi-PCG, the
 // cheapest implicit filter (one M + hK solve), and vcglib's Taubin smoothing, on meshes
-// of ~10k, ~100k and ~1M vertices normalised to unit bounding-box diagonal.
-// Every case runs in a forked child so that its peak memory is its own.
+// of ~10k, ~100k and ~1M vertices normalised to unit bounding-box diagonal, for the paper's
+// presets and the Butterworth lowpass (issue 10); then what a preview rerun costs through a
+// FilterCache (issue 13). Every case runs in a forked child so that its peak memory is its own.
 #include "core/butterworth.h"
 #include "core/filter.h"
 #include "core/laplace.h"
@@ -98,14 +99,16 @@ struct CaseResult {
     char failure[200] = {0};
 };
 
-// Runs `work` in a child process and returns what it wrote into the shared result.
-CaseResult in_child(const std::function<void(CaseResult&)>& work) {
+// Runs `work` in a child process and returns what it wrote into the result, which must be
+// trivially copyable and have a `char failure[200]` (the child's exception, if any).
+template <class Result>
+Result in_child(const std::function<void(Result&)>& work) {
     int fds[2];
     if (pipe(fds) != 0) throw std::runtime_error("pipe failed");
     const pid_t pid = fork();
     if (pid == 0) {
         close(fds[0]);
-        CaseResult r;
+        Result r;
         try {
             work(r);
         } catch (const std::exception& e) {
@@ -115,7 +118,7 @@ CaseResult in_child(const std::function<void(CaseResult&)>& work) {
         _exit(0);
     }
     close(fds[1]);
-    CaseResult r;
+    Result r;
     const ssize_t got = read(fds[0], &r, sizeof r);
     close(fds[0]);
     int status = 0;
@@ -233,37 +236,26 @@ int region_rows(const std::vector<std::function<NamedMesh()>>& makers, const std
 // with s1 and s2 10% higher (a parameter change in the dialog), then that filter again
 // (Apply after the preview). In a child process, like every case.
 std::string preview_row(const std::string& name, const Mesh& m) {
-    struct Times {
+    struct PreviewTimes {
         double first = 0, changed = 0, again = 0;
         char changed_reuse[32] = {0}, again_reuse[32] = {0};
+        char failure[200] = {0};
     };
-    Times times;
-    int fds[2];
-    if (pipe(fds) != 0) throw std::runtime_error("pipe failed");
-    const pid_t pid = fork();
-    if (pid == 0) {
-        close(fds[0]);
+    const PreviewTimes times = in_child<PreviewTimes>([&](PreviewTimes& t) {
         FilterCache cache;
         FilterReport report;
         apply_filter(m.points, m.triangles, design_second_order({25, 50, 1, 1.1, 0}), {}, &report, &cache);
-        times.first = report.seconds_total;
+        t.first = report.seconds_total;
         apply_filter(m.points, m.triangles, design_second_order({27.5, 55, 1, 1.1, 0}), {}, &report, &cache);
-        times.changed = report.seconds_total;
-        std::snprintf(times.changed_reuse, sizeof times.changed_reuse, "%s", report.reused.c_str());
+        t.changed = report.seconds_total;
+        std::snprintf(t.changed_reuse, sizeof t.changed_reuse, "%s", report.reused.c_str());
         apply_filter(m.points, m.triangles, design_second_order({27.5, 55, 1, 1.1, 0}), {}, &report, &cache);
-        times.again = report.seconds_total;
-        std::snprintf(times.again_reuse, sizeof times.again_reuse, "%s", report.reused.c_str());
-        if (write(fds[1], &times, sizeof times) != static_cast<ssize_t>(sizeof times)) _exit(2);
-        _exit(0);
-    }
-    close(fds[1]);
-    const ssize_t got = read(fds[0], &times, sizeof times);
-    close(fds[0]);
-    int status = 0;
-    waitpid(pid, &status, 0);
+        t.again = report.seconds_total;
+        std::snprintf(t.again_reuse, sizeof t.again_reuse, "%s", report.reused.c_str());
+    });
     std::ostringstream row;
     row << "| " << name << " | " << m.points.rows() << " | ";
-    if (got != static_cast<ssize_t>(sizeof times)) row << "failed (status " << status << ") ||||||\n";
+    if (times.failure[0]) row << "failed: " << times.failure << " ||||||\n";
     else
         row << fmt(times.first, 3) << " | " << fmt(times.changed, 3) << " | " << times.changed_reuse << " | "
             << fmt(times.again, 3) << " | " << times.again_reuse << " |\n";
@@ -359,7 +351,7 @@ int main(int argc, char** argv) {
         NamedMesh nm = make();
         normalise(nm.mesh);
         const Mesh& m = nm.mesh;
-        const double taubin_s = in_child([&](CaseResult& r) { r.taubin_seconds = taubin(m, 50); }).taubin_seconds;
+        const double taubin_s = in_child<CaseResult>([&](CaseResult& r) { r.taubin_seconds = taubin(m, 50); }).taubin_seconds;
         if (m.points.rows() <= FilterCache().max_vertices()) {
             const std::string row = preview_row(nm.name, m);
             preview << row;
@@ -369,8 +361,8 @@ int main(int argc, char** argv) {
             const TransferFunction& g = p.g;
             const bool lowpass = std::string(p.name) == "lowpass";
             const double budget = (lowpass && m.points.rows() < 120000) ? pcg_full_budget : pcg_budget;
-            const CaseResult floor = in_child([&](CaseResult& r) { r.floor_seconds = floor_solve(m, 1.0 / p.s1); });
-            const CaseResult r = in_child([&](CaseResult& r) {
+            const CaseResult floor = in_child<CaseResult>([&](CaseResult& r) { r.floor_seconds = floor_solve(m, 1.0 / p.s1); });
+            const CaseResult r = in_child<CaseResult>([&](CaseResult& r) {
                 FilterReport report;
                 const Points fast = apply_filter(m.points, m.triangles, g, {}, &report);
                 r.assembly = report.seconds_assembly;

@@ -78,4 +78,13 @@ inline Mesh patch_of(const Mesh& m, int seed_face, Eigen::Index vertex_budget) {
     return patch;
 }
 
+#ifdef GEOFILTER_MESHES
+// A 1,500-vertex patch of the real "man" scan: irregular, with many eigenvalues near any
+// resonance, and small enough for the dense spectral reference.
+inline const Mesh& man_scan_patch() {
+    static const Mesh patch = patch_of(read_off(GEOFILTER_MESHES "/man.off"), 0, 1500);
+    return patch;
+}
+#endif
+
 } // namespace geofilter::reference

@@ -8,6 +8,8 @@
 
 #include <Eigen/Eigenvalues>
 
+#include <cmath>
+
 namespace geofilter::reference {
 
 struct Spectrum {
@@ -51,6 +53,11 @@ inline double bbox_diagonal(const Points& p) { return (p.colwise().maxCoeff() - 
 
 inline double mean_radius(const Points& p, const Eigen::RowVector3d& centre = Eigen::RowVector3d::Zero()) {
     return (p.rowwise() - centre).rowwise().norm().mean();
+}
+
+// Area-weighted RMS of a per-vertex difference: the measure FilterOptions::tolerance bounds.
+inline double area_weighted_rms(const Points& difference, const Eigen::VectorXd& mass) {
+    return std::sqrt((mass.array() * difference.rowwise().squaredNorm().array()).sum() / mass.sum());
 }
 
 } // namespace geofilter::reference

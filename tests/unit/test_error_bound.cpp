@@ -11,21 +11,8 @@
 using namespace geofilter;
 using namespace geofilter::reference;
 
-namespace {
-
-const Mesh& scan_patch() {
-    static const Mesh patch = patch_of(read_off(GEOFILTER_MESHES "/man.off"), 0, 1500);
-    return patch;
-}
-
-double area_weighted_rms(const Points& difference, const Eigen::VectorXd& mass) {
-    return std::sqrt((mass.array() * difference.rowwise().squaredNorm().array()).sum() / mass.sum());
-}
-
-} // namespace
-
 TEST(ErrorBound, SharpResonancesOnARealScanMeetTheTolerance) {
-    const Mesh& m = scan_patch();
+    const Mesh& m = man_scan_patch();
     ASSERT_GT(m.points.rows(), 1000);
     const Spectrum spectrum = spectrum_of(m);
     const double diag = bbox_diagonal(m.points);

@@ -18,18 +18,9 @@ using namespace geofilter::reference;
 
 namespace {
 
-const Mesh& scan_patch() {
-    static const Mesh patch = patch_of(read_off(GEOFILTER_MESHES "/man.off"), 0, 1500);
-    return patch;
-}
-
 const Spectrum& patch_spectrum() {
-    static const Spectrum spectrum = spectrum_of(scan_patch());
+    static const Spectrum spectrum = spectrum_of(man_scan_patch());
     return spectrum;
-}
-
-double area_weighted_rms(const Points& difference, const Eigen::VectorXd& mass) {
-    return std::sqrt((mass.array() * difference.rowwise().squaredNorm().array()).sum() / mass.sum());
 }
 
 } // namespace
@@ -64,7 +55,7 @@ TEST(FilterCache, PreconditionedRangeBracketsTheSampledRatio) {
 }
 
 TEST(FilterCache, RunsOnTheSameMeshReuseAndStayWithinTolerance) {
-    const Mesh& m = scan_patch();
+    const Mesh& m = man_scan_patch();
     const Spectrum& spectrum = patch_spectrum();
     const double diag = bbox_diagonal(m.points);
     FilterCache cache;
@@ -105,7 +96,7 @@ TEST(FilterCache, RunsOnTheSameMeshReuseAndStayWithinTolerance) {
 }
 
 TEST(FilterCache, AHeldFactorAtAnotherShiftStillMeetsTheTolerance) {
-    const Mesh& m = scan_patch();
+    const Mesh& m = man_scan_patch();
     const PreparedMesh prepared = prepare_mesh(m.points, m.triangles);
     ASSERT_EQ(prepared.points.rows(), m.points.rows());
     const Spectrum& spectrum = patch_spectrum();
