@@ -141,6 +141,11 @@ FilterSpec pole_zero() {
 }
 
 // The operator choice every Butterworth-based entry shares; index 0 lets the filter pick.
+// The Butterworth order n of the higher-order filters, 4 by default.
+ParameterSpec order_parameter(const std::string& help) {
+    return {param::order, ParameterType::Int, 4, "order: steepness n (1-8)", help, {}};
+}
+
 ParameterSpec operator_parameter(const std::string& automatic) {
     return {param::laplace_operator, ParameterType::Enum, 0, "operator: Laplacian",
             "The discrete Laplacian whose frequencies the filter cuts. Cotangent: the paper's (frequencies in"
@@ -159,10 +164,9 @@ FilterSpec butterworth_lowpass() {
                  " of almost exactly 1, smaller ones removed. With useSelection on, sc is the selected feature's"
                  " frequency (2/r^2 or 1/r^2).",
                  {}});
-    p.push_back({param::order, ParameterType::Int, 4, "order: steepness n (1-8)",
-                 "Steepness: beyond the cutoff the gain falls by 20 n dB per decade; below it the gain stays within"
-                 " (s/sc)^n of 1. Each order is one sparse solve (a pair of orders one conjugate-gradient solve).",
-                 {}});
+    p.push_back(order_parameter("Steepness: beyond the cutoff the gain falls by 20 n dB per decade; below it the gain"
+                                " stays within (s/sc)^n of 1. Each order is one sparse solve (a pair of orders one"
+                                " conjugate-gradient solve)."));
     p.push_back({param::use_selection, ParameterType::Bool, 1, "useSelection: cutoff from the selected feature",
                  "Set sc to the selected feature's frequency (2/r^2 sphere-like, 1/r^2 cylinder-like): features of that"
                  " size are halved, smaller ones removed. Default: on when faces are selected.",
@@ -187,8 +191,7 @@ FilterSpec denoise() {
                  " down to the surface they stand on, larger features stay (cutoff radius twice the bump's). Off: remove per-vertex"
                  " sampling noise using only the mesh. Default: on when faces are selected.",
                  {}});
-    p.push_back({param::order, ParameterType::Int, 4, "order: steepness n (1-8)",
-                 "Order of the Butterworth lowpass (steepness, 20 n dB/decade).", {}});
+    p.push_back(order_parameter("Order of the Butterworth lowpass (steepness, 20 n dB/decade)."));
     p.push_back(operator_parameter("cotangent with a selection, umbrella (per-vertex) without."));
     append_shared(p);
     return {"GeoFilter: Denoise",

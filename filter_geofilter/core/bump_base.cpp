@@ -1,4 +1,5 @@
 #include "bump_base.h"
+#include "components.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,32 +8,9 @@ namespace geofilter {
 
 namespace {
 
-// Vertex neighbours through the faces, as compressed rows.
-struct Neighbours {
-    std::vector<int> start, index;
-};
-
-Neighbours neighbours_of(const Triangles& triangles, Eigen::Index n) {
-    std::vector<std::vector<int>> lists(static_cast<size_t>(n));
-    for (Eigen::Index f = 0; f < triangles.rows(); ++f)
-        for (int k = 0; k < 3; ++k) {
-            lists[triangles(f, k)].push_back(triangles(f, (k + 1) % 3));
-            lists[triangles(f, k)].push_back(triangles(f, (k + 2) % 3));
-        }
-    Neighbours out;
-    out.start.push_back(0);
-    for (auto& list : lists) {
-        std::sort(list.begin(), list.end());
-        list.erase(std::unique(list.begin(), list.end()), list.end());
-        out.index.insert(out.index.end(), list.begin(), list.end());
-        out.start.push_back(static_cast<int>(out.index.size()));
-    }
-    return out;
-}
-
 // One step of a grey-scale morphology or mean over each vertex's closed 1-ring.
 template <class Combine>
-Eigen::VectorXd ring_step(const Neighbours& nb, const Eigen::VectorXd& value, const std::vector<bool>& used,
+Eigen::VectorXd ring_step(const VertexNeighbours& nb, const Eigen::VectorXd& value, const std::vector<bool>& used,
                           Combine combine) {
     Eigen::VectorXd out = value;
     for (Eigen::Index v = 0; v < value.size(); ++v) {
@@ -112,7 +90,7 @@ Points lower_onto_bump_base(const Points& input, const Points& filtered, const T
 
     // Opening (erosion then dilation) of the height on the bumps' side, over rings as wide as
     // the removal radius, then a mean over the same width: the base's level, smooth.
-    const Neighbours nb = neighbours_of(triangles, n);
+    const VertexNeighbours nb = vertex_neighbours(triangles, n);
     const int rings = std::max(1, static_cast<int>(std::lround(radius / mean_edge)));
     Eigen::VectorXd base = result.side * height;
     for (int i = 0; i < rings; ++i) base = ring_step(nb, base, used, Min{});

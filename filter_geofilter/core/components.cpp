@@ -1,5 +1,7 @@
 #include "components.h"
 
+#include <algorithm>
+
 #include <numeric>
 
 namespace geofilter {
@@ -60,6 +62,34 @@ int component_count(const std::vector<int>& labels) {
     int count = 0;
     for (int l : labels) count = std::max(count, l + 1);
     return count;
+}
+
+VertexNeighbours vertex_neighbours(const Triangles& triangles, Eigen::Index vertex_count) {
+    VertexNeighbours out;
+    out.start.assign(static_cast<size_t>(vertex_count) + 1, 0);
+    for (Eigen::Index f = 0; f < triangles.rows(); ++f)
+        for (int k = 0; k < 3; ++k) out.start[static_cast<size_t>(triangles(f, k)) + 1] += 2;
+    for (size_t v = 0; v < static_cast<size_t>(vertex_count); ++v) out.start[v + 1] += out.start[v];
+    std::vector<int> all(static_cast<size_t>(out.start.back()));
+    std::vector<int> fill(out.start.begin(), out.start.end() - 1);
+    for (Eigen::Index f = 0; f < triangles.rows(); ++f)
+        for (int k = 0; k < 3; ++k) {
+            const int v = triangles(f, k);
+            all[static_cast<size_t>(fill[v]++)] = triangles(f, (k + 1) % 3);
+            all[static_cast<size_t>(fill[v]++)] = triangles(f, (k + 2) % 3);
+        }
+    // An edge shared by two faces was listed twice: keep each neighbour once.
+    out.index.reserve(all.size() / 2);
+    int row_begin = 0;
+    for (size_t v = 0; v < static_cast<size_t>(vertex_count); ++v) {
+        const auto first = all.begin() + out.start[v], last = all.begin() + out.start[v + 1];
+        std::sort(first, last);
+        out.index.insert(out.index.end(), first, std::unique(first, last));
+        out.start[v] = row_begin;
+        row_begin = static_cast<int>(out.index.size());
+    }
+    out.start[static_cast<size_t>(vertex_count)] = row_begin;
+    return out;
 }
 
 } // namespace geofilter

@@ -15,6 +15,13 @@ std::vector<int> connected_components(const Triangles& triangles, Eigen::Index v
 // column, whatever their value): the components of a Laplacian's vertices.
 std::vector<int> connected_components(const SparseMatrix& coupling);
 
+// Each vertex's neighbours through face edges, each once and in increasing order, as
+// compressed rows: the neighbours of v are index[start[v] .. start[v+1]).
+struct VertexNeighbours {
+    std::vector<int> start, index;
+};
+VertexNeighbours vertex_neighbours(const Triangles& triangles, Eigen::Index vertex_count);
+
 // How many labels `labels` uses.
 int component_count(const std::vector<int>& labels);
 

@@ -31,29 +31,6 @@ void check_faces(const Triangles& triangles, Eigen::Index vertex_count) {
                     std::to_string(vertex_count - 1) + ")");
 }
 
-// Vertex -> neighbours through edges, compressed rows; an edge shared by two faces appears
-// twice, which Dijkstra does not mind.
-struct Adjacency {
-    std::vector<int> start, neighbour;
-};
-
-Adjacency adjacency(const Triangles& triangles, Eigen::Index vertex_count) {
-    Adjacency a;
-    a.start.assign(static_cast<size_t>(vertex_count) + 1, 0);
-    for (Eigen::Index f = 0; f < triangles.rows(); ++f)
-        for (int k = 0; k < 3; ++k) a.start[static_cast<size_t>(triangles(f, k)) + 1] += 2;
-    std::partial_sum(a.start.begin(), a.start.end(), a.start.begin());
-    a.neighbour.resize(static_cast<size_t>(a.start.back()));
-    std::vector<int> fill(a.start.begin(), a.start.end() - 1);
-    for (Eigen::Index f = 0; f < triangles.rows(); ++f)
-        for (int k = 0; k < 3; ++k) {
-            const int v = triangles(f, k);
-            a.neighbour[static_cast<size_t>(fill[v]++)] = triangles(f, (k + 1) % 3);
-            a.neighbour[static_cast<size_t>(fill[v]++)] = triangles(f, (k + 2) % 3);
-        }
-    return a;
-}
-
 double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -126,13 +103,13 @@ std::vector<double> region_weight(const Points& points, const Triangles& triangl
     }
     if (blend_width > 0) {
         // Dijkstra from the region, stopped at the band's edge: cost follows the band.
-        const Adjacency a = adjacency(triangles, n);
+        const VertexNeighbours a = vertex_neighbours(triangles, n);
         while (!queue.empty()) {
             const auto [d, v] = queue.top();
             queue.pop();
             if (d > distance[v]) continue;
             for (int e = a.start[v]; e < a.start[v + 1]; ++e) {
-                const int u = a.neighbour[static_cast<size_t>(e)];
+                const int u = a.index[static_cast<size_t>(e)];
                 const double du = d + (points.row(u) - points.row(v)).norm();
                 if (du < distance[u] && du < blend_width) queue.emplace(distance[u] = du, u);
             }

@@ -212,6 +212,16 @@ def workdir_for(test_id):
     return d
 
 
+def run_to_mesh(test, tag, steps):
+    """Runs `steps` for a TestCase in a fresh folder and reads the current layer back; fails
+    the test (with meshlabserver's output) if meshlabserver fails. Returns (run, mesh)."""
+    d = workdir_for(f"{test.id()}.{tag}")
+    out = os.path.join(d, "out.ply")
+    run = run_meshlabserver(d, steps, outputs=[(out, None)])
+    test.assertEqual(run.returncode, 0, run.describe())
+    return run, read_ply(out)
+
+
 # ---------------------------------------------------------------------------------------------
 # PLY
 

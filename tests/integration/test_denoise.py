@@ -5,7 +5,6 @@ Butterworth lowpass scales it by 1/(1 + (s/sc)^n), written here from the closed 
 the C++ core. Denoise logs the operator, the order and where its cutoff came from.
 """
 
-import os
 import re
 import unittest
 
@@ -20,11 +19,8 @@ def butterworth(s, sc, n):
 
 class DenoiseTest(unittest.TestCase):
     def run_steps(self, steps, tag):
-        d = h.workdir_for(f"{self.id()}.{tag}")
-        out = os.path.join(d, "out.ply")
-        run = h.run_meshlabserver(d, steps, outputs=[(out, None)])
-        self.assertEqual(run.returncode, 0, run.describe())
-        return run, h.read_ply(out).vertices
+        run, mesh = h.run_to_mesh(self, tag, steps)
+        return run, mesh.vertices
 
     def test_butterworth_scales_a_sphere_by_the_closed_form(self):
         radius, sc = 0.5, 10.0

@@ -4,7 +4,6 @@ Whole sphere of radius R selected with Conditional Face Selection: the fitted el
 radius is R, so the Lowpass must log "s1 = 2/R^2 from N selected faces" (sphere-like).
 """
 
-import os
 import re
 import unittest
 
@@ -25,11 +24,7 @@ def logged_s1(run):
 
 class FrequencyFromSelection(unittest.TestCase):
     def run_steps(self, tag, steps):
-        d = h.workdir_for(f"{self.id()}.{tag}")
-        out = os.path.join(d, "out.ply")
-        run = h.run_meshlabserver(d, steps, outputs=[(out, None)])
-        self.assertEqual(run.returncode, 0, run.describe())
-        return run, h.read_ply(out)
+        return h.run_to_mesh(self, tag, steps)
 
     def test_whole_sphere_gives_2_over_R2(self):
         for radius in (0.5, 2.0):
