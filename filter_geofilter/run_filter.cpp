@@ -55,13 +55,6 @@ int order_of(const FilterSpec& spec, const ParameterValues& values) {
     return static_cast<int>(v);
 }
 
-double mean_edge_length(const Points& points, const Triangles& triangles) {
-    double sum = 0;
-    for (Eigen::Index f = 0; f < triangles.rows(); ++f)
-        for (int i = 0; i < 3; ++i) sum += (points.row(triangles(f, i)) - points.row(triangles(f, (i + 1) % 3))).norm();
-    return triangles.rows() > 0 ? sum / (3.0 * static_cast<double>(triangles.rows())) : 0.0;
-}
-
 } // namespace
 
 double apply_feature_radius(const FilterSpec& spec, ParameterValues& values, double radius, const std::string& source,
@@ -109,7 +102,7 @@ double apply_feature_radius(const FilterSpec& spec, ParameterValues& values, dou
                 (spec.kind == FilterKind::Denoise ? ": select one bump instead" : ""));
 }
 
-Operator operator_from_values(const FilterSpec& spec, const ParameterValues& values, bool has_feature) {
+std::optional<Operator> operator_from_values(const FilterSpec& spec, const ParameterValues& values, bool has_feature) {
     if (!spec.parameter(param::laplace_operator)) return Operator::Cotangent;
     switch (choice_of(spec, values, param::laplace_operator)) {
     case 1: return Operator::Cotangent;
@@ -117,9 +110,9 @@ Operator operator_from_values(const FilterSpec& spec, const ParameterValues& val
     case 3: return Operator::Umbrella;
     default: break;
     }
-    // Automatic, chosen by measurement (docs/results.md): a bump's size is geometric, so
-    // the cotangent operator; per-vertex noise is per-vertex, so the umbrella operator.
-    if (spec.kind == FilterKind::Denoise && !has_feature) return Operator::Umbrella;
+    // Automatic: a bump's size is geometric, so the cotangent operator; for per-vertex noise
+    // Denoise tries the umbrella and the cotangent operator on the mesh (denoise.h).
+    if (spec.kind == FilterKind::Denoise && !has_feature) return std::nullopt;
     return Operator::Cotangent;
 }
 
@@ -131,7 +124,7 @@ ParameterValues default_values(const FilterSpec& spec, bool has_selection) {
 }
 
 TransferFunction design_from_values(const FilterSpec& spec, const ParameterValues& values, const FeatureEllipsoid* feature,
-                                    std::vector<std::string>& log, double* s1_used, double mean_edge_length) {
+                                    std::vector<std::string>& log, double* s1_used) {
     const FeatureShape shape = shape_of(spec, values);
     const char* shape_name = shape == FeatureShape::Sphere ? "sphere-like, s = 2/r^2" : "cylinder-like, s = 1/r^2";
     if (spec.kind == FilterKind::SecondOrder) {
@@ -193,7 +186,7 @@ TransferFunction design_from_values(const FilterSpec& spec, const ParameterValue
     if (spec.kind == FilterKind::Butterworth) {
         const int order = order_of(spec, values);
         double cutoff = value_of(spec, values, param::cutoff);
-        const Operator op = operator_from_values(spec, values, feature != nullptr);
+        const Operator op = *operator_from_values(spec, values, feature != nullptr);
         if (feature) {
             cutoff = feature->frequency(shape);
             log.push_back("cutoff sc = " + num(cutoff) + " from the selection (" + shape_name + ")");
@@ -211,10 +204,11 @@ TransferFunction design_from_values(const FilterSpec& spec, const ParameterValue
     }
     if (spec.kind == FilterKind::Denoise) {
         const int order = order_of(spec, values);
-        const Operator op = operator_from_values(spec, values, feature != nullptr);
-        const DenoiseDesign d = feature ? design_denoise_from_bump(*feature, shape, order, op)
-                                        : design_denoise_from_sampling(mean_edge_length > 0 ? mean_edge_length : 1.0,
-                                                                       order, op);
+        if (!feature)
+            throw Error("Denoise with nothing selected picks its lowpass on the mesh itself (cross-validation): there is"
+                        " no design before the mesh is seen; select one bump (or give a radius) to design it alone");
+        const Operator op = *operator_from_values(spec, values, true);
+        const DenoiseDesign d = design_denoise_from_bump(*feature, shape, order, op);
         log.push_back("cutoff sc = " + num(d.cutoff) + " from " + d.origin);
         log.push_back("design: Butterworth lowpass of order " + std::to_string(order) + ", cutoff sc = " + num(d.cutoff) +
                       ", operator " + operator_name(op));
@@ -254,17 +248,6 @@ RunOutput run_filter(const FilterSpec& spec, const ParameterValues& values, cons
         return out;
     }
 
-    out.op = operator_from_values(spec, values, out.feature.has_value());
-    const double h = spec.kind == FilterKind::Denoise ? mean_edge_length(input.points, input.triangles) : 0.0;
-    out.transfer = design_from_values(spec, values, out.feature ? &*out.feature : nullptr, out.log, &out.s1_used, h);
-    out.log.push_back(out.transfer.describe());
-    const double g1 = spec.kind == FilterKind::SecondOrder ? value_of(spec, values, param::G1) : 0.0;
-    const double s_ref = out.s1_used > 0 ? out.s1_used : 1.0;
-    const ResponseReport response = analyse_response(out.transfer, g1, s_ref * 1e-4, s_ref * 1e4);
-    out.log.push_back("peak |G| = " + num(response.peak_gain) + " at s = " + num(response.peak_frequency) +
-                      "; G(0) = " + num(out.transfer(0)) + ", G(inf) = " + num(out.transfer.at_infinity()));
-    for (const auto& w : response.warnings) out.log.push_back("warning: " + w);
-
     FilterOptions options;
     options.solver = choice_of(spec, values, param::solver) == 1 ? Solver::JacobiPcg : Solver::Factored;
     options.tolerance = value_of(spec, values, param::tolerance);
@@ -273,9 +256,44 @@ RunOutput run_filter(const FilterSpec& spec, const ParameterValues& values, cons
     options.max_iterations = static_cast<int>(cap);
     options.progress = input.progress;
     options.fix_boundary = value_of(spec, values, param::fix_boundary) != 0;
+
+    // Denoise with nothing selected designs on the mesh: it tries its candidates there and
+    // keeps the best-scoring one, already applied to the whole mesh.
+    std::optional<SamplingDenoise> sampled;
+    if (spec.kind == FilterKind::Denoise && !out.feature) {
+        const int order = order_of(spec, values);
+        sampled = denoise_sampling_noise(input.points, input.triangles, order,
+                                         operator_from_values(spec, values, false), options);
+        const DenoiseDesign& d = sampled->design;
+        out.op = d.op;
+        out.transfer = d.g;
+        out.s1_used = d.cutoff;
+        out.log.push_back("cross-validation (nothing selected) over " + std::to_string(sampled->scores.size()) +
+                          " lowpasses, score x 1e6 (lower is better; residual, degrees of freedom / vertices):");
+        for (const auto& [candidate, score] : sampled->scores)
+            out.log.push_back("  " + candidate.origin + ": " + num(1e6 * score.score) + " (" + num(1e6 * score.residual) +
+                              ", " + num(score.degrees_of_freedom / score.vertices) + ")" +
+                              (candidate.origin == d.origin ? "  <- chosen" : ""));
+        out.log.push_back("cutoff sc = " + num(d.cutoff) + " from the sampling: " + d.origin);
+        out.log.push_back("design: Butterworth lowpass of order " + std::to_string(order) + ", cutoff sc = " +
+                          num(d.cutoff) + ", operator " + operator_name(d.op));
+    } else {
+        out.op = *operator_from_values(spec, values, out.feature.has_value());
+        out.transfer = design_from_values(spec, values, out.feature ? &*out.feature : nullptr, out.log, &out.s1_used);
+    }
+    out.log.push_back(out.transfer.describe());
+    const double g1 = spec.kind == FilterKind::SecondOrder ? value_of(spec, values, param::G1) : 0.0;
+    const double s_ref = out.s1_used > 0 ? out.s1_used : 1.0;
+    const ResponseReport response = analyse_response(out.transfer, g1, s_ref * 1e-4, s_ref * 1e4);
+    out.log.push_back("peak |G| = " + num(response.peak_gain) + " at s = " + num(response.peak_frequency) +
+                      "; G(0) = " + num(out.transfer(0)) + ", G(inf) = " + num(out.transfer.at_infinity()));
+    for (const auto& w : response.warnings) out.log.push_back("warning: " + w);
     options.op = out.op;
     const int region = spec.parameter(param::region) ? choice_of(spec, values, param::region) : 0;
-    if (region == 0) {
+    if (region == 0 && sampled) {
+        out.points = std::move(sampled->points);
+        out.report = sampled->report;
+    } else if (region == 0) {
         out.points = apply_filter(input.points, input.triangles, out.transfer, options, &out.report, input.cache);
         if (spec.kind == FilterKind::Denoise && out.feature) {
             BumpBaseReport base;

@@ -56,15 +56,15 @@ double apply_feature_radius(const FilterSpec& spec, ParameterValues& values, dou
 
 // The transfer function for the given values, with the frequency taken from `feature`
 // when given. Throws Error naming the parameter at fault.
-// Denoise without a selection on a geometric operator cuts at the mesh's mean edge length:
-// pass it (0 = unknown: the design is then checked for h = 1 only).
+// Denoise without a feature has no design of its own: it picks one on the mesh (run_filter,
+// denoise_sampling_noise), so it is refused here.
 TransferFunction design_from_values(const FilterSpec& spec, const ParameterValues& values,
-                                    const FeatureEllipsoid* feature, std::vector<std::string>& log, double* s1_used = nullptr,
-                                    double mean_edge_length = 0);
+                                    const FeatureEllipsoid* feature, std::vector<std::string>& log, double* s1_used = nullptr);
 
 // The Laplacian a filter runs on: the `operator` parameter, or the filter's own choice when
-// it is Automatic (or the filter has no such parameter: the paper's cotangent).
-Operator operator_from_values(const FilterSpec& spec, const ParameterValues& values, bool has_feature);
+// it is Automatic (or the filter has no such parameter: the paper's cotangent). None: Denoise
+// without a feature on Automatic, which picks the operator on the mesh.
+std::optional<Operator> operator_from_values(const FilterSpec& spec, const ParameterValues& values, bool has_feature);
 
 // Runs the filter. Throws Error (with the message an adapter shows verbatim) on any
 // refusal; the input is never modified.

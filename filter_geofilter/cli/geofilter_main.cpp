@@ -118,7 +118,8 @@ int run(const CliOptions& o) {
         apply_feature_radius(spec, values, *o.radius, "--radius", log);
         feature = {true, *o.radius};
     }
-    if (!measure) {
+    // Denoise designs from the selected bump or from the mesh: nothing to check before both are read.
+    if (!measure && spec.kind != FilterKind::Denoise) {
         // Refuses a bad design before a large mesh is read. Scaling the frequencies (by the
         // selection) keeps a design valid or invalid, so this holds for the selection too.
         std::vector<std::string> unused;

@@ -1,5 +1,6 @@
 #include "bump_base.h"
 #include "components.h"
+#include "surface_measures.h"
 
 #include <algorithm>
 #include <cmath>
@@ -49,29 +50,21 @@ Points lower_onto_bump_base(const Points& input, const Points& filtered, const T
         throw Error("the bump radius must be a positive number (got " + format_number(radius) + ")");
     const Eigen::Index n = filtered.rows();
 
-    // Area-weighted vertex normals of the filtered surface, and its mean edge length.
-    Eigen::MatrixXd normal = Eigen::MatrixXd::Zero(n, 3);
+    // The filtered surface's normals and vertex areas.
+    const Eigen::MatrixXd normal = vertex_normals(filtered, triangles);
     Eigen::VectorXd area = Eigen::VectorXd::Zero(n);
     std::vector<bool> used(static_cast<size_t>(n), false);
-    double edge_sum = 0;
     for (Eigen::Index f = 0; f < triangles.rows(); ++f) {
         const Eigen::RowVector3d a = filtered.row(triangles(f, 0)), b = filtered.row(triangles(f, 1)),
                                  c = filtered.row(triangles(f, 2));
-        const Eigen::RowVector3d twice_area_normal = (b - a).cross(c - a);
-        edge_sum += (b - a).norm() + (c - b).norm() + (a - c).norm();
         for (int k = 0; k < 3; ++k) {
-            normal.row(triangles(f, k)) += twice_area_normal;
-            area[triangles(f, k)] += twice_area_normal.norm() / 6;
+            area[triangles(f, k)] += (b - a).cross(c - a).norm() / 6;
             used[triangles(f, k)] = true;
         }
     }
-    const double mean_edge = triangles.rows() ? edge_sum / (3.0 * static_cast<double>(triangles.rows())) : 0.0;
+    const double mean_edge = mean_edge_length(filtered, triangles);
     Eigen::VectorXd height = Eigen::VectorXd::Zero(n);  // of the input above the filtered surface
-    for (Eigen::Index v = 0; v < n; ++v) {
-        const double length = normal.row(v).norm();
-        if (length > 0) normal.row(v) /= length;
-        height[v] = (input.row(v) - filtered.row(v)).dot(normal.row(v));
-    }
+    for (Eigen::Index v = 0; v < n; ++v) height[v] = (input.row(v) - filtered.row(v)).dot(normal.row(v));
 
     // The selected bump rises above the filtered surface on the side it points to.
     double bump_height = 0, bump_area = 0;

@@ -1,4 +1,8 @@
 #include "denoise.h"
+#include "surface_measures.h"
+
+#include <chrono>
+#include <cmath>
 
 namespace geofilter {
 
@@ -11,16 +15,77 @@ DenoiseDesign design_denoise_from_bump(const FeatureEllipsoid& bump, FeatureShap
                 (shape == FeatureShape::Sphere ? " (sphere-like, s = 2/R^2)" : " (cylinder-like, s = 1/R^2)")};
 }
 
-DenoiseDesign design_denoise_from_sampling(double mean_edge_length, int order, Operator op) {
-    if (op == Operator::Umbrella)
-        return {design_butterworth_lowpass(denoise_vertex_cutoff, order), op, denoise_vertex_cutoff,
-                "the sampling: per-vertex frequency " + format_number(denoise_vertex_cutoff) +
-                    " of the umbrella operator (nothing selected)"};
-    if (!(mean_edge_length > 0)) throw Error("the mesh has no edge of positive length");
-    const double cutoff = 2.0 / (mean_edge_length * mean_edge_length);
-    return {design_butterworth_lowpass(cutoff, order), op, cutoff,
-            "the sampling: features of one mean edge length (" + format_number(mean_edge_length) +
-                ") in radius, s = 2/h^2 (nothing selected)"};
+std::vector<DenoiseDesign> denoise_sampling_candidates(double mean_edge_length, int order, std::optional<Operator> op) {
+    if (!(mean_edge_length > 0) || !std::isfinite(mean_edge_length))
+        throw Error("the mesh has no edge of positive length");
+    std::vector<DenoiseDesign> out;
+    if (!op || *op == Operator::Umbrella)
+        for (double sc : denoise_umbrella_cutoffs)
+            out.push_back({design_butterworth_lowpass(sc, order), Operator::Umbrella, sc,
+                           "per-vertex frequency " + format_number(sc) + " of the umbrella operator"});
+    if (!op || *op != Operator::Umbrella)
+        for (double k : denoise_cutoff_radii) {
+            const double sc = frequency_of_radius(k * mean_edge_length);
+            const Operator geometric = op ? *op : Operator::Cotangent;
+            out.push_back({design_butterworth_lowpass(sc, order), geometric, sc,
+                           "features of radius " + format_number(k) + " h = " + format_number(k * mean_edge_length) +
+                               " (h the mean edge length), " + operator_name(geometric) + " operator"});
+        }
+    return out;
+}
+
+SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& triangles, int order,
+                                       std::optional<Operator> op, const FilterOptions& options) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const double h = mean_edge_length(points, triangles);
+    const std::vector<DenoiseDesign> candidates = denoise_sampling_candidates(h, order, op);
+    const double step = 0.01 * h;
+    const double size = (points.colwise().maxCoeff() - points.colwise().minCoeff()).norm();
+    constexpr std::uint64_t seed = 20261201;
+
+    SamplingDenoise best;
+    double best_score = 0;
+    const int runs = 2 * static_cast<int>(candidates.size());
+    int run = 0;
+    // The runs on the input and on the perturbed input each keep their mesh for the next
+    // candidate of the same operator.
+    FilterCache on_input, on_perturbed;
+    std::optional<Operator> cached_op;
+    for (const DenoiseDesign& design : candidates) {
+        if (cached_op != design.op) {
+            on_input.clear();
+            on_perturbed.clear();
+            cached_op = design.op;
+        }
+        FilterOptions o = options;
+        o.op = design.op;
+        o.tolerance = std::min(options.tolerance, 1e-3 * step / size);
+        FilterReport report;
+        const Smoother smooth = [&](const Points& y) {
+            const bool perturbed = run % 2 == 1;
+            if (options.progress)
+                o.progress = [&, base = run](double fraction, const std::string& stage) {
+                    return options.progress((base + fraction) / runs,
+                                            "Denoise: " + design.origin + (perturbed ? " (perturbed)" : "") + ": " + stage);
+                };
+            FilterReport r;
+            Points out = apply_filter(y, triangles, design.g, o, &r, perturbed ? &on_perturbed : &on_input);
+            if (!perturbed) report = r;
+            ++run;
+            return out;
+        };
+        Points smoothed;
+        const CrossValidationScore score = generalized_cross_validation(points, triangles, smooth, step, seed, &smoothed);
+        best.scores.emplace_back(design, score);
+        if (best.scores.size() == 1 || score.score < best_score) {
+            best_score = score.score;
+            best.points = std::move(smoothed);
+            best.design = design;
+            best.report = report;
+        }
+    }
+    best.report.seconds_total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return best;
 }
 
 } // namespace geofilter

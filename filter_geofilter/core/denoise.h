@@ -4,10 +4,14 @@
 #pragma once
 
 #include "butterworth.h"
+#include "cross_validation.h"
 #include "feature.h"
+#include "filter.h"
 #include "operators.h"
 
+#include <optional>
 #include <string>
+#include <vector>
 
 namespace geofilter {
 
@@ -18,14 +22,6 @@ namespace geofilter {
 constexpr double denoise_radius_factor = 2.0;
 constexpr int denoise_order = 4;
 
-// Per-vertex sampling noise with nothing selected: the umbrella operator's per-vertex
-// frequency (in [0, 2]) at which the lowpass cuts. Noise that is independent from vertex to
-// vertex lives at the top of that range whatever the edge lengths, which a geometric
-// (cotangent) cutoff cannot follow on an irregular mesh. Of the settings measured (umbrella
-// 0.15-1, cotangent and intrinsic Delaunay at 0.75-2 mean edge lengths) only this one stayed
-// within 10 % of MeshLab's default Taubin on every noise case.
-constexpr double denoise_vertex_cutoff = 0.5;
-
 struct DenoiseDesign {
     TransferFunction g;
     Operator op;
@@ -35,8 +31,35 @@ struct DenoiseDesign {
 
 // From a measured bump (sphere-like s = 2/R^2 or cylinder-like 1/R^2 with R = 2 r).
 DenoiseDesign design_denoise_from_bump(const FeatureEllipsoid& bump, FeatureShape shape, int order, Operator op);
-// From the mesh alone: the umbrella operator unless another is asked for (then the cutoff is
-// that of features one mean edge length in radius).
-DenoiseDesign design_denoise_from_sampling(double mean_edge_length, int order, Operator op);
+
+// Per-vertex sampling noise with nothing selected. How much to smooth depends on the noise
+// and on the mesh (its sampling, its sharp features), so no single cutoff serves every scan:
+// measured on 16 noisy scans, the best fixed setting lost to MeshLab's default Laplacian
+// smoothing on 7. Instead a few lowpasses are tried and the one with the lowest generalized
+// cross-validation score is kept: the umbrella operator (per-vertex frequencies, in [0, 2],
+// whatever the edge lengths: it follows irregular sampling) cut at these frequencies, and
+// the cotangent operator (geometric, it follows the surface where the sampling is regular)
+// cut at features of these radii in mean edge lengths h.
+constexpr double denoise_umbrella_cutoffs[] = {0.25, 0.35, 0.5, 0.7, 1.0};
+constexpr double denoise_cutoff_radii[] = {0.75, 1.0, 1.5, 2.0};
+
+// The lowpasses tried: both families when `op` is not given, else that operator's (the
+// intrinsic Delaunay operator takes the cotangent's radii).
+std::vector<DenoiseDesign> denoise_sampling_candidates(double mean_edge_length, int order, std::optional<Operator> op);
+
+struct SamplingDenoise {
+    Points points;         // the chosen lowpass applied to the input
+    DenoiseDesign design;  // the chosen lowpass
+    FilterReport report;   // of the chosen lowpass's run; seconds_total covers every candidate
+    std::vector<std::pair<DenoiseDesign, CrossValidationScore>> scores;  // every candidate's
+};
+
+// Tries every candidate on the mesh (each twice: on the input and on the input perturbed
+// along the normals by 1 % of the mean edge length, see cross_validation.h) and keeps the
+// lowest score. Deterministic: the perturbation's signs come from a fixed seed. The runs
+// solve to 1e-3 of the perturbation or to options.tolerance, whichever is tighter, so that
+// solver error does not reach the scores. Throws Error like apply_filter.
+SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& triangles, int order,
+                                       std::optional<Operator> op, const FilterOptions& options);
 
 } // namespace geofilter

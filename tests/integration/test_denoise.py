@@ -50,12 +50,16 @@ class DenoiseTest(unittest.TestCase):
         self.assertAlmostEqual(sc, 2 / float(m.group(1)) ** 2, delta=1e-4 * sc)
         self.assertAlmostEqual(np.mean(h.radii(v)) / butterworth(2.0, sc, 4), 1.0, delta=2e-3)
 
-    def test_denoise_without_selection_uses_the_umbrella_operator(self):
+    def test_denoise_without_selection_picks_its_lowpass_by_cross_validation(self):
         steps = [h.sphere(1.0, 4), h.geofilter("GeoFilter: Denoise", useSelection=False)]
         run, v = self.run_steps(steps, "none")
         log = "\n".join(run.log)
-        self.assertIn("operator umbrella", log, run.describe())
-        self.assertIn("cutoff sc = ", log)
+        self.assertIn("cross-validation (nothing selected) over 9 lowpasses", log, run.describe())
+        chosen = [line for line in run.log if line.endswith("<- chosen")]
+        self.assertEqual(len(chosen), 1, log)
+        m = re.search(r"design: Butterworth lowpass of order 4, cutoff sc = ([0-9.eE+-]+), operator (umbrella|cotangent)", log)
+        self.assertIsNotNone(m, log)
+        self.assertIn(m.group(2), chosen[0])
         self.assertAlmostEqual(np.mean(h.radii(v)), 1.0, delta=2e-3)
 
 
