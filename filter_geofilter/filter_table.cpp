@@ -193,7 +193,7 @@ FilterSpec denoise() {
                  {}});
     p.push_back(order_parameter("Order of the Butterworth lowpass (steepness, 20 n dB/decade)."));
     p.push_back(operator_parameter("cotangent with a selection; without, both the umbrella (per-vertex) and the"
-                                   " cotangent operator are tried and the better-scoring one is kept."));
+                                   " intrinsic Delaunay operator are tried and the better-scoring one is kept."));
     append_shared(p);
     return {"GeoFilter: Denoise",
             "apply_geofilter_denoise",
@@ -203,8 +203,9 @@ FilterSpec denoise() {
             " texture) and every feature of that size and smaller is removed by a 4th-order Butterworth lowpass cut"
             " at twice the bump's radius, and the surface is lowered onto the bumps' base (the pattern's average height"
             " goes too); larger features stay. Without: per-vertex sampling noise is removed by the same lowpass,"
-            " its cutoff and operator (Taubin's umbrella or the cotangent) chosen on the mesh by generalized"
-            " cross-validation among 9 candidates; the log lists every candidate's score.",
+            " its cutoff and operator (Taubin's umbrella or the intrinsic Delaunay cotangent) chosen on the mesh by"
+            " generalized cross-validation among 9 candidates, and closed parts keep their volume; the log lists"
+            " every candidate's score.",
             p};
 }
 

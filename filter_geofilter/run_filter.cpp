@@ -293,6 +293,12 @@ RunOutput run_filter(const FilterSpec& spec, const ParameterValues& values, cons
     if (region == 0 && sampled) {
         out.points = std::move(sampled->points);
         out.report = sampled->report;
+        const VolumeRestoreReport& v = sampled->volume;
+        out.log.push_back(v.closed_components == 0
+                              ? std::string("no closed component: the volume was left as the lowpass made it")
+                              : "volume kept: " + std::to_string(v.closed_components) +
+                                    " closed component(s) moved along their normals by at most " + num(v.largest_offset) +
+                                    " (the lowpass had changed the volume by up to " + num(100 * v.largest_change) + " %)");
     } else if (region == 0) {
         out.points = apply_filter(input.points, input.triangles, out.transfer, options, &out.report, input.cache);
         if (spec.kind == FilterKind::Denoise && out.feature) {

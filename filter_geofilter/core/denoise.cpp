@@ -26,7 +26,7 @@ std::vector<DenoiseDesign> denoise_sampling_candidates(double mean_edge_length, 
     if (!op || *op != Operator::Umbrella)
         for (double k : denoise_cutoff_radii) {
             const double sc = frequency_of_radius(k * mean_edge_length);
-            const Operator geometric = op ? *op : Operator::Cotangent;
+            const Operator geometric = op ? *op : Operator::IntrinsicDelaunay;
             out.push_back({design_butterworth_lowpass(sc, order), geometric, sc,
                            "features of radius " + format_number(k) + " h = " + format_number(k * mean_edge_length) +
                                " (h the mean edge length), " + operator_name(geometric) + " operator"});
@@ -84,6 +84,7 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
             best.report = report;
         }
     }
+    best.points = restore_volume(points, best.points, triangles, &best.volume);
     best.report.seconds_total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return best;
 }

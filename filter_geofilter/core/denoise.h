@@ -8,6 +8,7 @@
 #include "feature.h"
 #include "filter.h"
 #include "operators.h"
+#include "volume.h"
 
 #include <optional>
 #include <string>
@@ -38,25 +39,29 @@ DenoiseDesign design_denoise_from_bump(const FeatureEllipsoid& bump, FeatureShap
 // smoothing on 7. Instead a few lowpasses are tried and the one with the lowest generalized
 // cross-validation score is kept: the umbrella operator (per-vertex frequencies, in [0, 2],
 // whatever the edge lengths: it follows irregular sampling) cut at these frequencies, and
-// the cotangent operator (geometric, it follows the surface where the sampling is regular)
-// cut at features of these radii in mean edge lengths h.
+// the intrinsic Delaunay cotangent operator (geometric: it follows the surface where the
+// sampling is regular) cut at features of these radii in mean edge lengths h. Intrinsic
+// Delaunay rather than the plain cotangent: at the same cutoffs it was as close to the truth
+// or closer and folded fewer faces (bunny00 at 0.3 h: 6 against 15; docs/results.md section 4).
 constexpr double denoise_umbrella_cutoffs[] = {0.25, 0.35, 0.5, 0.7, 1.0};
 constexpr double denoise_cutoff_radii[] = {0.75, 1.0, 1.5, 2.0};
 
 // The lowpasses tried: both families when `op` is not given, else that operator's (the
-// intrinsic Delaunay operator takes the cotangent's radii).
+// plain cotangent operator takes the same radii).
 std::vector<DenoiseDesign> denoise_sampling_candidates(double mean_edge_length, int order, std::optional<Operator> op);
 
 struct SamplingDenoise {
-    Points points;         // the chosen lowpass applied to the input
+    Points points;         // the chosen lowpass applied to the input, closed components' volume restored
     DenoiseDesign design;  // the chosen lowpass
     FilterReport report;   // of the chosen lowpass's run; seconds_total covers every candidate
     std::vector<std::pair<DenoiseDesign, CrossValidationScore>> scores;  // every candidate's
+    VolumeRestoreReport volume;
 };
 
 // Tries every candidate on the mesh (each twice: on the input and on the input perturbed
 // along the normals by 1 % of the mean edge length, see cross_validation.h) and keeps the
-// lowest score. Deterministic: the perturbation's signs come from a fixed seed. The runs
+// lowest score, then gives each closed component back its input volume (volume.h: the lowpass
+// shrinks thin curved parts). Deterministic: the perturbation's signs come from a fixed seed. The runs
 // solve to 1e-3 of the perturbation or to options.tolerance, whichever is tighter, so that
 // solver error does not reach the scores. Throws Error like apply_filter.
 SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& triangles, int order,

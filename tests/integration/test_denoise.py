@@ -57,7 +57,7 @@ class DenoiseTest(unittest.TestCase):
         self.assertIn("cross-validation (nothing selected) over 9 lowpasses", log, run.describe())
         chosen = [line for line in run.log if line.endswith("<- chosen")]
         self.assertEqual(len(chosen), 1, log)
-        m = re.search(r"design: Butterworth lowpass of order 4, cutoff sc = ([0-9.eE+-]+), operator (umbrella|cotangent)", log)
+        m = re.search(r"design: Butterworth lowpass of order 4, cutoff sc = ([0-9.eE+-]+), operator (umbrella|intrinsic Delaunay cotangent)", log)
         self.assertIsNotNone(m, log)
         self.assertIn(m.group(2), chosen[0])
         self.assertAlmostEqual(np.mean(h.radii(v)), 1.0, delta=2e-3)
