@@ -1,4 +1,5 @@
 #include "denoise.h"
+#include "mesh_prep.h"
 #include "surface_measures.h"
 
 #include <chrono>
@@ -37,7 +38,9 @@ std::vector<DenoiseDesign> denoise_sampling_candidates(double mean_edge_length, 
 SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& triangles, int order,
                                        std::optional<Operator> op, const FilterOptions& options) {
     const auto t0 = std::chrono::steady_clock::now();
-    const double h = mean_edge_length(points, triangles);
+    // Refuses a bad mesh (bad indices, NaN) with the filter's own message before measuring it.
+    const PreparedMesh usable = prepare_mesh(points, triangles);
+    const double h = mean_edge_length(usable.points, usable.triangles);
     const std::vector<DenoiseDesign> candidates = denoise_sampling_candidates(h, order, op);
     const double step = 0.01 * h;
     const double size = (points.colwise().maxCoeff() - points.colwise().minCoeff()).norm();

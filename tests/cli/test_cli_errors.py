@@ -118,6 +118,13 @@ class ErrorTest(unittest.TestCase):
                             mentions="not in use")
         self.assert_refused("lowpass", self.input, os.path.join(self.dir, "no-such-dir", "out.off"), status=1,
                             mentions="no directory")
+        # A NaN vertex is named by every filter, Denoise too (which measures the mesh first).
+        v, f = h.icosphere(2, 1.0)
+        v[7, 1] = float("nan")
+        bad = os.path.join(self.dir, "nan.off")
+        h.write_off(bad, v, f)
+        for preset in ("lowpass", "butterworth", "denoise"):
+            self.assert_refused(preset, bad, self.output, status=1, mentions="vertex 7 has a NaN or infinite coordinate")
         # Cannot converge in 2 iterations: the solver refuses, nothing is written.
         self.assert_refused("lowpass", "--solver", "pcg", "--max-iterations", 2, self.input, self.output, status=1)
 
