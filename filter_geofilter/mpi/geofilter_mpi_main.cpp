@@ -1,0 +1,85 @@
+// geofilter-mpi: `geofilter` under mpirun. Rank 0 runs geofilter's command line (the same
+// presets, options, defaults, messages and files); the factored solve, where the time and
+// memory go, runs on every rank (distributed_solver.cpp). Other ranks print nothing, so a
+// refusal is one message, and every rank exits with rank 0's status.
+
+#include "cli_run.h"
+#include "distributed_solver.h"
+
+#include <petscsys.h>
+
+#include <iostream>
+
+namespace {
+
+using namespace geofilter;
+
+const char* const pole_solver_option = "--pole-solver";
+
+// Takes geofilter-mpi's own option out of the arguments geofilter's parser sees.
+mpi::EngineOptions take_engine_options(std::vector<std::string>& args) {
+    mpi::EngineOptions engine;
+    for (size_t i = 0; i < args.size(); ++i) {
+        if (args[i] != pole_solver_option) continue;
+        if (i + 1 >= args.size()) throw cli::UsageError(std::string(pole_solver_option) + " needs a value: direct or multigrid");
+        const std::string value = args[i + 1];
+        if (value == "direct")
+            engine.pole_solver = mpi::PoleSolver::Direct;
+        else if (value == "multigrid")
+            engine.pole_solver = mpi::PoleSolver::Multigrid;
+        else
+            throw cli::UsageError(std::string(pole_solver_option) + " is direct or multigrid (got '" + value + "')");
+        args.erase(args.begin() + long(i), args.begin() + long(i) + 2);
+        --i;
+    }
+    return engine;
+}
+
+// What geofilter does that is not a filter of the whole mesh by the factored algorithm.
+void refuse_undistributed(const cli::CliOptions& o) {
+    const FilterSpec& spec = *o.preset;
+    if (spec.parameter(param::region) && o.values.at(param::region) != 0)
+        throw Error("--region: geofilter-mpi filters the whole mesh only (region filters are not distributed); use"
+                    " geofilter for --region selected or quality");
+    if (spec.parameter(param::solver) && o.values.at(param::solver) != 0)
+        throw Error("--solver: geofilter-mpi runs the factored solver only (the paper's Jacobi-PCG is not"
+                    " distributed); leave --solver at its default");
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    MPI_Init(&argc, &argv);
+    // PETSc's options come from PETSC_OPTIONS, never from the command line, which is geofilter's.
+    PetscInitializeNoArguments();
+    PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);
+    MPI_Comm comm = PETSC_COMM_WORLD;
+    int rank = 0;
+    MPI_Comm_rank(comm, &rank);
+    int status = 0;
+    if (rank == 0) {
+        std::vector<std::string> args(argv + 1, argv + argc);
+        cli::CommandLineTool tool;
+        tool.program = "geofilter-mpi";
+        tool.check_options = refuse_undistributed;
+        mpi::EngineOptions engine;
+        try {
+            engine = take_engine_options(args);
+        } catch (const cli::UsageError& e) {
+            std::cerr << tool.program << ": error: " << e.what() << std::endl;
+            status = 2;
+        }
+        if (status == 0) {
+            tool.external_solver = [&](const FactoredProblem& problem, FilterReport& report) {
+                return mpi::solve_on_all_ranks(comm, problem, report, engine);
+            };
+            status = cli::run_command_line(args, tool);
+        }
+        mpi::finish_serving(comm, status);
+    } else {
+        status = mpi::serve_solves(comm);
+    }
+    PetscFinalize();
+    MPI_Finalize();
+    return status;
+}
