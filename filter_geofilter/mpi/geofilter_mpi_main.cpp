@@ -8,6 +8,7 @@
 
 #include <petscsys.h>
 
+#include <fstream>
 #include <iostream>
 
 namespace {
@@ -46,6 +47,41 @@ void refuse_undistributed(const cli::CliOptions& o) {
                     " distributed); leave --solver at its default");
 }
 
+// This process's peak resident memory (VmHWM), in bytes; 0 when unknown.
+double peak_resident_bytes() {
+    std::ifstream status("/proc/self/status");
+    std::string key;
+    while (status >> key) {
+        if (key == "VmHWM:") {
+            double kib = 0;
+            status >> kib;
+            return kib * 1024;
+        }
+        status.ignore(1 << 20, '\n');
+    }
+    return 0;
+}
+
+// After a successful run, one log line with every rank's peak memory (the benchmark reads it).
+void report_peak_memory(MPI_Comm comm, bool print) {
+    int ranks = 1, rank = 0;
+    MPI_Comm_size(comm, &ranks);
+    MPI_Comm_rank(comm, &rank);
+    double mine = peak_resident_bytes();
+    std::vector<double> all(static_cast<size_t>(ranks));
+    MPI_Gather(&mine, 1, MPI_DOUBLE, all.data(), 1, MPI_DOUBLE, 0, comm);
+    if (rank != 0 || !print) return;
+    std::cerr << "geofilter-mpi: peak memory per rank (MiB):";
+    for (double bytes : all) std::cerr << ' ' << format_number(bytes / (1024.0 * 1024.0), 4);
+    std::cerr << std::endl;
+}
+
+bool quiet_requested(const std::vector<std::string>& args) {
+    for (const auto& a : args)
+        if (a == "-q" || a == "--quiet") return true;
+    return false;
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -76,8 +112,10 @@ int main(int argc, char** argv) {
             status = cli::run_command_line(args, tool);
         }
         mpi::finish_serving(comm, status);
+        if (status == 0) report_peak_memory(comm, !quiet_requested(args));
     } else {
         status = mpi::serve_solves(comm);
+        if (status == 0) report_peak_memory(comm, false);
     }
     PetscFinalize();
     MPI_Finalize();
