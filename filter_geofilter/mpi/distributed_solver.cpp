@@ -174,8 +174,11 @@ struct LocalRows {
 };
 
 // On rank 0, `order` lists the vertices by new index and `new_index` is its inverse.
+// `coupling_entries` (rank 0): the stored entries of Kt whose row and column live on different
+// ranks, what each product with Kt sends.
 LocalRows distribute_rows(MPI_Comm comm, const SparseMatrix* kt, const Eigen::MatrixXd* q, const std::vector<int>& owner,
-                          std::vector<int>& order, std::vector<int>& row_counts) {
+                          std::vector<int>& order, std::vector<int>& row_counts, long& coupling_entries) {
+    coupling_entries = 0;
     const Ranks ranks(comm);
     row_counts.assign(size_t(ranks.size), 0);
     std::vector<int> entry_counts(size_t(ranks.size), 0), lengths, columns;
@@ -198,7 +201,10 @@ LocalRows distribute_rows(MPI_Comm comm, const SparseMatrix* kt, const Eigen::Ma
             const int v = order[size_t(i)];
             row.clear();
             // Kt is symmetric: column v holds row v.
-            for (SparseMatrix::InnerIterator it(*kt, v); it; ++it) row.emplace_back(new_index[size_t(it.row())], it.value());
+            for (SparseMatrix::InnerIterator it(*kt, v); it; ++it) {
+                row.emplace_back(new_index[size_t(it.row())], it.value());
+                coupling_entries += owner[size_t(it.row())] != owner[size_t(v)];
+            }
             std::sort(row.begin(), row.end());
             lengths.push_back(int(row.size()));
             entry_counts[size_t(owner[size_t(v)])] += int(row.size());
@@ -307,7 +313,7 @@ public:
                 out = kt_times(in) - r * in;
             };
             solved = iterate(shifted, [&](const Eigen::MatrixXd& in, Eigen::MatrixXd& out) { out = apply_factor(in); }, y,
-                             allowed_error, [lower](double residual_norm, double) { return residual_norm / lower; });
+                             allowed_error, true, [lower](double residual_norm, double) { return residual_norm / lower; });
         }
         const Eigen::MatrixXd residual = kt_times(solved) - r * solved - y;
         report_.relative_residual =
@@ -336,7 +342,7 @@ public:
         const detail::PreconditionedRange range = detail::pair_preconditioner_range(r, shift);
         const double m = detail::pair_operator_lower_bound(r);
         const bool exact = header_.pole_solver == PoleSolver::Direct;
-        const Eigen::MatrixXd x = iterate(quadratic, preconditioner, y, allowed_error, [&](double residual_norm, double rz) {
+        const Eigen::MatrixXd x = iterate(quadratic, preconditioner, y, allowed_error, !exact, [&](double residual_norm, double rz) {
             return exact ? std::sqrt(std::max(rz, 0.0) / (range.low * m)) : residual_norm / m;
         });
         report_.seconds_solve += seconds_since(t);
@@ -344,12 +350,14 @@ public:
     }
 
 private:
+    // The error bound from the residual's norm (over all ranks: an extra reduction, so only
+    // when `uses_residual_norm`) and the sum over columns of r'P^-1 r.
     using Bound = std::function<double(double residual_norm, double rz_sum)>;
 
     Eigen::MatrixXd iterate(const BlockOperator& matrix, const BlockOperator& preconditioner,
-                            const Eigen::MatrixXd& y, double allowed_error, const Bound& bound) {
+                            const Eigen::MatrixXd& y, double allowed_error, bool uses_residual_norm, const Bound& bound) {
         const ErrorBound error_bound = [&](const Eigen::MatrixXd& residual, const Eigen::ArrayXd& rz) {
-            return bound(global_norm(residual), rz.sum());
+            return bound(uses_residual_norm ? global_norm(residual) : 0.0, rz.sum());
         };
         Eigen::MatrixXd x = Eigen::MatrixXd::Zero(y.rows(), y.cols());
         const PcgOutcome outcome = block_pcg(matrix, preconditioner, y, x, error_bound, allowed_error,
@@ -378,20 +386,34 @@ private:
         return out;
     }
 
+    // (Kt + c I)^-1 in: MUMPS solves the three columns at once (one forward and backward
+    // sweep over the distributed factor); one V-cycle per column for the multigrid option.
     Eigen::MatrixXd apply_factor(const Eigen::MatrixXd& in) {
         Eigen::MatrixXd out(in.rows(), in.cols());
+        if (header_.pole_solver == PoleSolver::Direct) {
+            PC pc;
+            Mat factor, b, x;
+            check(KSPGetPC(ksp_, &pc), "solving with the factor");
+            check(PCFactorGetMatrix(pc, &factor), "solving with the factor");
+            // Eigen's column-major block is PETSc's dense local storage: no copies.
+            check(MatCreateDense(comm_, in.rows(), PETSC_DECIDE, header_.vertices, in.cols(),
+                                 const_cast<double*>(in.data()), &b),
+                  "solving with the factor");
+            check(MatCreateDense(comm_, out.rows(), PETSC_DECIDE, header_.vertices, out.cols(), out.data(), &x),
+                  "solving with the factor");
+            const PetscErrorCode code = MatMatSolve(factor, b, x);
+            MatDestroy(&b);
+            MatDestroy(&x);
+            check(code, "solving with the factor");
+            return out;
+        }
         for (Eigen::Index c = 0; c < in.cols(); ++c) {
-            check(VecPlaceArray(in_, in.col(c).data()), "solving with the factor");
-            check(VecPlaceArray(out_, out.col(c).data()), "solving with the factor");
+            check(VecPlaceArray(in_, in.col(c).data()), "applying the multigrid cycle");
+            check(VecPlaceArray(out_, out.col(c).data()), "applying the multigrid cycle");
             const PetscErrorCode code = KSPSolve(ksp_, in_, out_);
             VecResetArray(in_);
             VecResetArray(out_);
-            check(code, "solving with the factor");
-            KSPConvergedReason reason;
-            KSPGetConvergedReason(ksp_, &reason);
-            if (reason < 0)
-                throw Error("the sparse Cholesky factorisation failed (Kt + " + format_number(shift_) +
-                            " I is not positive definite): the mesh has inverted or degenerate faces");
+            check(code, "applying the multigrid cycle");
         }
         return out;
     }
@@ -405,9 +427,43 @@ private:
         // The same pattern at every shift: PETSc keeps MUMPS's analysis and refactorises.
         check(KSPSetOperators(ksp_, shifted_, shifted_), "factorising");
         check(KSPSetUp(ksp_), "factorising");
+        PC pc;
+        check(KSPGetPC(ksp_, &pc), "factorising");
+        PCFailedReason failed = PC_NOERROR;
+        check(PCGetFailedReason(pc, &failed), "factorising");
+        // MUMPS's status is global: every rank sees the same failure.
+        if (failed != PC_NOERROR) {
+            if (header_.pole_solver == PoleSolver::Direct) {
+                Mat factor;
+                PetscInt status = 0;
+                if (PCFactorGetMatrix(pc, &factor) == 0 && MatMumpsGetInfog(factor, 1, &status) == 0 && status != -10)
+                    throw Error("MUMPS failed to factorise Kt + " + format_number(shift) + " I (its INFOG(1) = " +
+                                std::to_string(status) + ")");
+            }
+            throw Error("the sparse Cholesky factorisation failed (Kt + " + format_number(shift) +
+                        " I is not positive definite): the mesh has inverted or degenerate faces");
+        }
         shift_ = shift;
         report_.seconds_factorization += seconds_since(t);
+        if (header_.pole_solver == PoleSolver::Direct) {
+            Mat factor;
+            check(PCFactorGetMatrix(pc, &factor), "reading the factor's size");
+            // INFOG(29): entries in the factor; INFOG(21)/(22): MB the factorisation used on the
+            // largest rank and on all of them (MUMPS's own counts).
+            PetscInt entries = 0, largest_mb = 0, total_mb = 0;
+            check(MatMumpsGetInfog(factor, 29, &entries), "reading the factor's size");
+            check(MatMumpsGetInfog(factor, 21, &largest_mb), "reading the factor's size");
+            check(MatMumpsGetInfog(factor, 22, &total_mb), "reading the factor's size");
+            factor_entries = double(entries);
+            factor_largest_mb = double(largest_mb);
+            factor_total_mb = double(total_mb);
+        }
     }
+
+public:
+    double factor_entries = 0, factor_largest_mb = 0, factor_total_mb = 0;
+
+private:
 
     MPI_Comm comm_;
     Mat kt_;
@@ -442,7 +498,10 @@ Eigen::MatrixXd solve_collectively(MPI_Comm comm, const FactoredProblem* problem
     const Header header = broadcast_header(comm, problem ? &root_header : nullptr);
     const std::vector<int> owner = partition_vertices(comm, problem ? &kt : nullptr, header.vertices);
     std::vector<int> order, row_counts;
-    LocalRows local = distribute_rows(comm, problem ? &kt : nullptr, problem ? &q : nullptr, owner, order, row_counts);
+    long coupling_entries = 0;
+    const long kt_entries = problem ? long(kt.nonZeros()) : 0;
+    LocalRows local =
+        distribute_rows(comm, problem ? &kt : nullptr, problem ? &q : nullptr, owner, order, row_counts, coupling_entries);
     kt = SparseMatrix();
     q = Eigen::MatrixXd();
     report.seconds_assembly += seconds_since(t0);
@@ -453,6 +512,19 @@ Eigen::MatrixXd solve_collectively(MPI_Comm comm, const FactoredProblem* problem
         check(MatNorm(local.kt, NORM_INFINITY, &spectrum_max), "bounding Kt's spectrum");  // Gershgorin, as the core
         DistributedStages stages(comm, local.kt, header, report);
         solved_local = detail::apply_factored_transfer(header.g, local.q, header.allowed_error, spectrum_max, stages);
+        if (options && options->log) {
+            std::string line = "distributed over " + std::to_string(ranks.size) + " rank(s)" +
+                               (ranks.size > 1 ? " (PT-Scotch partition)" : "") + ": rows per rank";
+            for (int c : row_counts) line += " " + std::to_string(c);
+            line += "; " + format_number(100.0 * double(coupling_entries) / double(std::max(kt_entries, 1L)), 3) +
+                    "% of Kt's entries couple ranks";
+            if (stages.factor_entries > 0)
+                line += "; MUMPS factor " + format_number(stages.factor_entries, 4) + " entries (" +
+                        format_number(stages.factor_entries / double(header.vertices), 4) + " per vertex), factorisation memory " +
+                        format_number(stages.factor_largest_mb, 4) + " MB on the largest rank, " +
+                        format_number(stages.factor_total_mb, 4) + " MB in all";
+            options->log->push_back(line);
+        }
     } catch (...) {
         MatDestroy(&local.kt);
         throw;

@@ -13,6 +13,7 @@
 #include <mpi.h>
 
 #include <string>
+#include <vector>
 
 namespace geofilter::mpi {
 
@@ -26,6 +27,8 @@ enum class PoleSolver {
 
 struct EngineOptions {
     PoleSolver pole_solver = PoleSolver::Direct;
+    // Rank 0 appends what the distributed solve measured (partition, factor size), for the log.
+    std::vector<std::string>* log = nullptr;
 };
 
 // On rank 0: wakes the other ranks and solves `problem` with them (`options` reach them

@@ -99,6 +99,7 @@ int main(int argc, char** argv) {
         tool.program = "geofilter-mpi";
         tool.check_options = refuse_undistributed;
         mpi::EngineOptions engine;
+        std::vector<std::string> engine_log;
         try {
             engine = take_engine_options(args);
         } catch (const cli::UsageError& e) {
@@ -106,12 +107,15 @@ int main(int argc, char** argv) {
             status = 2;
         }
         if (status == 0) {
+            engine.log = &engine_log;
             tool.external_solver = [&](const FactoredProblem& problem, FilterReport& report) {
                 return mpi::solve_on_all_ranks(comm, problem, report, engine);
             };
             status = cli::run_command_line(args, tool);
         }
         mpi::finish_serving(comm, status);
+        if (status == 0 && !quiet_requested(args))
+            for (const auto& line : engine_log) std::cerr << tool.program << ": " << line << '\n';
         if (status == 0) report_peak_memory(comm, !quiet_requested(args));
     } else {
         status = mpi::serve_solves(comm);
