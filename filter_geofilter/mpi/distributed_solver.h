@@ -41,6 +41,9 @@ Eigen::MatrixXd solve_on_all_ranks(MPI_Comm comm, const FactoredProblem& problem
 // once it calls finish_serving().
 int serve_solves(MPI_Comm comm);
 
+// This process's peak resident memory so far (VmHWM), in bytes; 0 when unknown.
+double peak_resident_bytes();
+
 // On rank 0: releases the other ranks with the exit status of the run.
 void finish_serving(MPI_Comm comm, int exit_status);
 

@@ -8,7 +8,6 @@
 
 #include <petscsys.h>
 
-#include <fstream>
 #include <iostream>
 
 namespace {
@@ -47,27 +46,12 @@ void refuse_undistributed(const cli::CliOptions& o) {
                     " distributed); leave --solver at its default");
 }
 
-// This process's peak resident memory (VmHWM), in bytes; 0 when unknown.
-double peak_resident_bytes() {
-    std::ifstream status("/proc/self/status");
-    std::string key;
-    while (status >> key) {
-        if (key == "VmHWM:") {
-            double kib = 0;
-            status >> kib;
-            return kib * 1024;
-        }
-        status.ignore(1 << 20, '\n');
-    }
-    return 0;
-}
-
 // After a successful run, one log line with every rank's peak memory (the benchmark reads it).
 void report_peak_memory(MPI_Comm comm, bool print) {
     int ranks = 1, rank = 0;
     MPI_Comm_size(comm, &ranks);
     MPI_Comm_rank(comm, &rank);
-    double mine = peak_resident_bytes();
+    double mine = mpi::peak_resident_bytes();
     std::vector<double> all(static_cast<size_t>(ranks));
     MPI_Gather(&mine, 1, MPI_DOUBLE, all.data(), 1, MPI_DOUBLE, 0, comm);
     if (rank != 0 || !print) return;
