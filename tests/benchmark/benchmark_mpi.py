@@ -74,7 +74,7 @@ def main():
     os.makedirs(args.workdir, exist_ok=True)
     env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OMP_NUM_THREADS="1",
                OPENBLAS_NUM_THREADS="1")
-    rows = []
+    rows, notes = [], []
     for n in args.vertices:
         mesh = os.path.join(args.workdir, f"torus_{n}.ply")
         if not os.path.exists(mesh):
@@ -89,6 +89,10 @@ def main():
                                         args.preset, "--pole-solver", args.pole_solver, mesh, out], env)
             m = re.search(r"peak memory per rank \(MiB\): ([\d. e+]+)", log)
             rows.append((actual, "geofilter-mpi", ranks, seconds, [float(x) for x in m.group(1).split()]))
+            factor = re.search(r"MUMPS factor [^;]*", log)
+            before = re.search(r"rank 0 before the distributed solve[^:]*: peak ([\d.e+]+) MiB", log)
+            notes.append(f"{actual} vertices, {ranks} rank(s): {factor.group(0) if factor else 'no factor'}; "
+                         f"rank 0 held {before.group(1) if before else '?'} MiB before the distributed solve")
         os.remove(out)
     print(f"{'vertices':>10} {'tool':<14} {'ranks':>5} {'seconds':>8} {'peak MiB (max rank)':>20} "
           f"{'vs geofilter':>12}  per rank")
@@ -99,6 +103,8 @@ def main():
         share = max(peaks) / single[vertices]
         print(f"{vertices:>10} {tool:<14} {ranks:>5} {seconds:>8.1f} {max(peaks):>20.0f} {share:>11.0%}  "
               + " ".join(f"{p:.0f}" for p in peaks))
+    for note in notes:
+        print(note)
 
 
 if __name__ == "__main__":
