@@ -263,21 +263,7 @@ public:
         check(MatDuplicate(kt_, MAT_COPY_VALUES, &shifted_), "copying Kt");
         check(MatSetOption(shifted_, MAT_SPD, PETSC_TRUE), "marking Kt + c I positive definite");
         check(MatSetOption(shifted_, MAT_SPD_ETERNAL, PETSC_TRUE), "marking Kt + c I positive definite");
-        check(KSPCreate(comm_, &ksp_), "creating the pole solver");
-        check(KSPSetOperators(ksp_, shifted_, shifted_), "creating the pole solver");
-        PC pc;
-        check(KSPGetPC(ksp_, &pc), "creating the pole solver");
-        if (header_.pole_solver == PoleSolver::Direct) {
-            check(KSPSetType(ksp_, KSPPREONLY), "choosing the direct solver");
-            check(PCSetType(pc, PCCHOLESKY), "choosing Cholesky");
-            check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "choosing MUMPS");
-        } else {
-            // One V-cycle per application: a fixed symmetric operator, so that CG may use it.
-            check(KSPSetType(ksp_, KSPPREONLY), "choosing the multigrid preconditioner");
-            check(PCSetType(pc, PCHYPRE), "choosing hypre");
-            check(PCHYPRESetType(pc, "boomeramg"), "choosing BoomerAMG");
-        }
-        check(KSPSetFromOptions(ksp_), "reading the solver's options");
+        create_pole_solver();
     }
     ~DistributedStages() override {
         KSPDestroy(&ksp_);
@@ -351,6 +337,24 @@ public:
     }
 
 private:
+    void create_pole_solver() {
+        check(KSPCreate(comm_, &ksp_), "creating the pole solver");
+        check(KSPSetOperators(ksp_, shifted_, shifted_), "creating the pole solver");
+        PC pc;
+        check(KSPGetPC(ksp_, &pc), "creating the pole solver");
+        if (header_.pole_solver == PoleSolver::Direct) {
+            check(KSPSetType(ksp_, KSPPREONLY), "choosing the direct solver");
+            check(PCSetType(pc, PCCHOLESKY), "choosing Cholesky");
+            check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "choosing MUMPS");
+        } else {
+            // One V-cycle per application: a fixed symmetric operator, so that CG may use it.
+            check(KSPSetType(ksp_, KSPPREONLY), "choosing the multigrid preconditioner");
+            check(PCSetType(pc, PCHYPRE), "choosing hypre");
+            check(PCHYPRESetType(pc, "boomeramg"), "choosing BoomerAMG");
+        }
+        check(KSPSetFromOptions(ksp_), "reading the solver's options");
+    }
+
     // The error bound from the residual's norm (over all ranks: an extra reduction, so only
     // when `uses_residual_norm`) and the sum over columns of r'P^-1 r.
     using Bound = std::function<double(double residual_norm, double rz_sum)>;
@@ -423,27 +427,45 @@ private:
         if (shift == shift_) return;
         const auto t = std::chrono::steady_clock::now();
         shift_ = NAN;
-        check(MatCopy(kt_, shifted_, SAME_NONZERO_PATTERN), "shifting Kt");
-        check(MatShift(shifted_, shift), "shifting Kt");
-        // The same pattern at every shift: PETSc keeps MUMPS's analysis and refactorises.
-        check(KSPSetOperators(ksp_, shifted_, shifted_), "factorising");
-        check(KSPSetUp(ksp_), "factorising");
-        PC pc;
-        check(KSPGetPC(ksp_, &pc), "factorising");
-        PCFailedReason failed = PC_NOERROR;
-        check(PCGetFailedReason(pc, &failed), "factorising");
-        // MUMPS's status is global: every rank sees the same failure.
-        if (failed != PC_NOERROR) {
+        // MUMPS sizes its workspace from the analysis's estimate plus ICNTL(14) percent; on
+        // several ranks the estimate can fall short (INFOG(1) = -9, measured at 3 ranks on the
+        // bunny about one run in five). PETSc will not refactorise after that failure, so
+        // the pole solver is built again, with a larger margin, and the factorisation retried.
+        for (int attempt = 0;; ++attempt) {
+            PC pc;
+            check(KSPGetPC(ksp_, &pc), "factorising");
+            check(MatCopy(kt_, shifted_, SAME_NONZERO_PATTERN), "shifting Kt");
+            check(MatShift(shifted_, shift), "shifting Kt");
+            // The same pattern at every shift: PETSc keeps MUMPS's analysis and refactorises.
+            check(KSPSetOperators(ksp_, shifted_, shifted_), "factorising");
+            check(KSPSetUp(ksp_), "factorising");
+            PCFailedReason failed = PC_NOERROR;
+            check(PCGetFailedReason(pc, &failed), "factorising");
+            if (failed == PC_NOERROR) break;
+            // MUMPS's status is global: every rank sees the same failure and takes the same branch.
             if (header_.pole_solver == PoleSolver::Direct) {
                 Mat factor;
-                PetscInt status = 0;
-                if (PCFactorGetMatrix(pc, &factor) == 0 && MatMumpsGetInfog(factor, 1, &status) == 0 && status != -10)
+                PetscInt status = 0, margin = 0;
+                check(PCFactorGetMatrix(pc, &factor), "factorising");
+                check(MatMumpsGetInfog(factor, 1, &status), "factorising");
+                if ((status == -9 || status == -8) && attempt < 3) {
+                    check(MatMumpsGetIcntl(factor, 14, &margin), "factorising");
+                    const std::string larger = std::to_string(std::max<PetscInt>(2 * margin, 50));
+                    workspace_retries += 1;
+                    KSPDestroy(&ksp_);
+                    check(PetscOptionsSetValue(nullptr, "-mat_mumps_icntl_14", larger.c_str()), "factorising");
+                    create_pole_solver();
+                    continue;
+                }
+                if (status != -10)  // -10: numerically singular, the message below
                     throw Error("MUMPS failed to factorise Kt + " + format_number(shift) + " I (its INFOG(1) = " +
                                 std::to_string(status) + ")");
             }
             throw Error("the sparse Cholesky factorisation failed (Kt + " + format_number(shift) +
                         " I is not positive definite): the mesh has inverted or degenerate faces");
         }
+        PC pc;
+        check(KSPGetPC(ksp_, &pc), "factorising");
         shift_ = shift;
         report_.seconds_factorization += seconds_since(t);
         if (header_.pole_solver == PoleSolver::Direct) {
@@ -463,6 +485,7 @@ private:
 
 public:
     double factor_entries = 0, factor_largest_mb = 0, factor_total_mb = 0;
+    int workspace_retries = 0;  // factorisations redone with a larger ICNTL(14)
 
 private:
 
@@ -524,6 +547,9 @@ Eigen::MatrixXd solve_collectively(MPI_Comm comm, const FactoredProblem* problem
                         format_number(stages.factor_entries / double(header.vertices), 4) + " per vertex), factorisation memory " +
                         format_number(stages.factor_largest_mb, 4) + " MB on the largest rank, " +
                         format_number(stages.factor_total_mb, 4) + " MB in all";
+            if (stages.workspace_retries > 0)
+                line += " (after " + std::to_string(stages.workspace_retries) +
+                        " retry with a larger workspace: MUMPS's estimate fell short, INFOG(1) = -9 or -8)";
             options->log->push_back(line);
         }
     } catch (...) {

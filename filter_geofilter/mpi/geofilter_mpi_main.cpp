@@ -60,9 +60,9 @@ void report_peak_memory(MPI_Comm comm, bool print) {
     std::cerr << std::endl;
 }
 
-bool quiet_requested(const std::vector<std::string>& args) {
+bool has_flag(const std::vector<std::string>& args, const char* short_form, const char* long_form) {
     for (const auto& a : args)
-        if (a == "-q" || a == "--quiet") return true;
+        if (a == short_form || a == long_form) return true;
     return false;
 }
 
@@ -96,11 +96,17 @@ int main(int argc, char** argv) {
                 return mpi::solve_on_all_ranks(comm, problem, report, engine);
             };
             status = cli::run_command_line(args, tool);
+            if (status == 0 && has_flag(args, "-h", "--help"))
+                std::cout << "\ngeofilter-mpi runs the above under mpirun, and takes one more option:\n"
+                             "  --pole-solver direct|multigrid  [direct]\n"
+                             "      direct: MUMPS Cholesky factors (geofilter's factored solver, distributed);\n"
+                             "      multigrid: CG with a hypre BoomerAMG preconditioner, no factor (the largest\n"
+                             "      meshes). --region and --solver pcg are refused.\n";
         }
         mpi::finish_serving(comm, status);
-        if (status == 0 && !quiet_requested(args))
+        if (status == 0 && !has_flag(args, "-q", "--quiet"))
             for (const auto& line : engine_log) std::cerr << tool.program << ": " << line << '\n';
-        if (status == 0) report_peak_memory(comm, !quiet_requested(args));
+        if (status == 0) report_peak_memory(comm, !has_flag(args, "-q", "--quiet"));
     } else {
         status = mpi::serve_solves(comm);
         if (status == 0) report_peak_memory(comm, false);
