@@ -542,6 +542,8 @@ Eigen::MatrixXd solve_collectively(MPI_Comm comm, const FactoredProblem* problem
             for (int c : row_counts) line += " " + std::to_string(c);
             line += "; " + format_number(100.0 * double(coupling_entries) / double(std::max(kt_entries, 1L)), 3) +
                     "% of Kt's entries couple ranks";
+            if (header.pole_solver == PoleSolver::Multigrid)
+                line += "; poles solved by CG with a hypre BoomerAMG preconditioner (--pole-solver multigrid), no factor";
             if (stages.factor_entries > 0)
                 line += "; MUMPS factor " + format_number(stages.factor_entries, 4) + " entries (" +
                         format_number(stages.factor_entries / double(header.vertices), 4) + " per vertex), factorisation memory " +
