@@ -255,6 +255,7 @@ RunOutput run_filter(const FilterSpec& spec, const ParameterValues& values, cons
     if (!(cap >= 1 && cap <= 1e9)) throw Error("maxIterations must be between 1 and 1e9 (got " + num(cap) + ")");
     options.max_iterations = static_cast<int>(cap);
     options.progress = input.progress;
+    options.external_solver = input.external_solver;
     options.fix_boundary = value_of(spec, values, param::fix_boundary) != 0;
 
     // Denoise with nothing selected designs on the mesh: it tries its candidates there and

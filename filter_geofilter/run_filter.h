@@ -29,6 +29,8 @@ struct RunInput {
     // Kept by an adapter whose user reruns filters on the same mesh (MeshLab's Preview);
     // null: nothing is kept between runs.
     FilterCache* cache = nullptr;
+    // The factored solver's algorithm on another engine (FilterOptions::external_solver).
+    ExternalFactoredSolver external_solver;
 };
 
 struct RunOutput {

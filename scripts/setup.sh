@@ -18,6 +18,7 @@ packages=(
     pybind11-dev python3-dev python3-pytest   # the Python module and its tests
     gnuplot-nox                           # G(s) and benchmark plots
     libcgal-demo                          # real meshes (data.tar.gz)
+    libopenmpi-dev openmpi-bin petsc-dev libmumps-dev   # geofilter-mpi: MPI, PETSc 3.18 (MUMPS, hypre, PT-Scotch)
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -257,8 +257,14 @@ Points apply_filter_unguarded(const Points& points, const Triangles& triangles, 
 
     detail::FilterProblem problem{st.solved_laplacian(), st.solved_coordinates, g, options, st.size};
     if (cacheable) problem.factor_slot = &st.factors;
-    const Eigen::MatrixXd solved = options.solver == Solver::Factored ? detail::solve_factored(problem, report)
-                                                                      : detail::solve_jacobi_pcg(problem, report);
+    Eigen::MatrixXd solved;
+    if (options.solver == Solver::Factored && options.external_solver)
+        solved = options.external_solver(FactoredProblem{problem.laplacian, problem.coordinates, g,
+                                                         detail::allowed_error(problem), options.max_iterations},
+                                         report);
+    else
+        solved = options.solver == Solver::Factored ? detail::solve_factored(problem, report)
+                                                    : detail::solve_jacobi_pcg(problem, report);
     if (reuse_mesh) report.reused = had_factor && report.seconds_factorization == 0 ? "mesh and factor" : "mesh";
 
     Eigen::MatrixXd filtered;

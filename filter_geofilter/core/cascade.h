@@ -31,6 +31,13 @@ public:
 Eigen::MatrixXd apply_cascade(const TransferFunction& g, const Eigen::MatrixXd& q, double allowed_error,
                               double spectrum_max, PoleGroupSolver& solver);
 
+// G(Kt) q as the factored solver applies it: a second-order G with a complex pair as
+// Ginf + R/D (the iterative part then carries only the band G changes), anything else through
+// apply_cascade. The one recipe of the core's factored solver and of any other engine that
+// solves the same pole groups (geofilter-mpi's distributed one).
+Eigen::MatrixXd apply_factored_transfer(const TransferFunction& g, const Eigen::MatrixXd& q, double allowed_error,
+                                        double spectrum_max, PoleGroupSolver& solver);
+
 // An upper bound on the largest eigenvalue of a symmetric matrix (Gershgorin: the largest
 // absolute row sum).
 double spectrum_upper_bound(const SparseMatrix& symmetric);

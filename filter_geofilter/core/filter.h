@@ -30,6 +30,22 @@ double estimated_filter_bytes(Eigen::Index vertices);
 // Receives a fraction in [0, 1] and the current stage; returns false to cancel.
 using ProgressCallback = std::function<bool(double fraction, const std::string& stage)>;
 
+struct FilterReport;
+
+// The problem the factored solver solves, for an engine outside the core that solves it the
+// same way on other hardware (geofilter-mpi: distributed over MPI ranks). `coordinates` are
+// centred (each component about its centroid), `laplacian` has positive mass everywhere, and
+// the result, G(M^-1 K) applied to the coordinates, may be off by at most `allowed_error`
+// (Frobenius norm in the frame q = M^1/2 p).
+struct FactoredProblem {
+    const Laplacian& laplacian;
+    const Eigen::MatrixXd& coordinates;
+    const TransferFunction& g;
+    double allowed_error;
+    int max_iterations;
+};
+using ExternalFactoredSolver = std::function<Eigen::MatrixXd(const FactoredProblem&, FilterReport&)>;
+
 struct FilterOptions {
     Solver solver = Solver::Factored;
     Operator op = Operator::Cotangent;  // the Laplacian whose frequencies G is designed in
@@ -49,6 +65,9 @@ struct FilterOptions {
     double memory_budget_bytes = 0;
     int max_iterations = 100000;   // cap per iterative solve; hitting it is an error
     ProgressCallback progress;
+    // Runs the factored solver's algorithm instead of the core's (Solver::Factored only);
+    // empty: the core's own.
+    ExternalFactoredSolver external_solver;
 };
 
 struct FilterReport {

@@ -6,20 +6,23 @@ namespace geofilter {
 
 PcgOutcome block_pcg(const BlockOperator& apply_matrix, const BlockOperator& apply_preconditioner,
                      const Eigen::MatrixXd& b, Eigen::MatrixXd& x, const ErrorBound& error_bound, double allowed_error,
-                     int max_iterations, const IterationObserver& observer) {
+                     int max_iterations, const IterationObserver& observer,
+                     const ColumnSumReduction& reduce_over_parts) {
     const Eigen::Index columns = b.cols();
     Eigen::MatrixXd r(b.rows(), columns), z(b.rows(), columns), p, q(b.rows(), columns);
     apply_matrix(x, q);
     r = b - q;
-    const Eigen::ArrayXd b_norm = b.colwise().norm().transpose().array();
-    auto worst_residual = [&]() {
-        double worst = 0;
-        for (Eigen::Index c = 0; c < columns; ++c)
-            worst = std::max(worst, b_norm[c] > 0 ? r.col(c).norm() / b_norm[c] : r.col(c).norm());
-        return worst;
+    auto dot_columns = [&](const Eigen::MatrixXd& u, const Eigen::MatrixXd& v) -> Eigen::ArrayXd {
+        Eigen::ArrayXd sums = u.cwiseProduct(v).colwise().sum().transpose().array();
+        if (reduce_over_parts) reduce_over_parts(sums);
+        return sums;
     };
-    auto dot_columns = [](const Eigen::MatrixXd& u, const Eigen::MatrixXd& v) -> Eigen::ArrayXd {
-        return u.cwiseProduct(v).colwise().sum().transpose().array();
+    const Eigen::ArrayXd b_norm = dot_columns(b, b).sqrt();
+    auto worst_residual = [&]() {
+        const Eigen::ArrayXd r_norm = dot_columns(r, r).sqrt();
+        double worst = 0;
+        for (Eigen::Index c = 0; c < columns; ++c) worst = std::max(worst, b_norm[c] > 0 ? r_norm[c] / b_norm[c] : r_norm[c]);
+        return worst;
     };
 
     PcgOutcome outcome;

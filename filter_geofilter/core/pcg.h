@@ -18,6 +18,11 @@ using IterationObserver = std::function<bool(int iteration, double error_bound)>
 // of A and P (e.g. bounds on their eigenvalues), not from the iterates' history.
 using ErrorBound = std::function<double(const Eigen::MatrixXd& residual, const Eigen::ArrayXd& rz)>;
 
+// Turns per-column sums over this caller's rows into sums over all rows, in place: a caller
+// that holds only its share of the rows (a distributed solve) adds up the other shares here,
+// so that every part takes the same steps. Empty: the rows given are all there is.
+using ColumnSumReduction = std::function<void(Eigen::ArrayXd& column_sums)>;
+
 struct PcgOutcome {
     int iterations = 0;
     double relative_residual = 0;  // max over columns of |b - A x| / |b| (recurrence residual), for logs
@@ -30,6 +35,7 @@ struct PcgOutcome {
 // `error_bound` is at most `allowed_error`, or after `max_iterations`.
 PcgOutcome block_pcg(const BlockOperator& apply_matrix, const BlockOperator& apply_preconditioner,
                      const Eigen::MatrixXd& b, Eigen::MatrixXd& x, const ErrorBound& error_bound, double allowed_error,
-                     int max_iterations, const IterationObserver& observer = {});
+                     int max_iterations, const IterationObserver& observer = {},
+                     const ColumnSumReduction& reduce_over_parts = {});
 
 } // namespace geofilter

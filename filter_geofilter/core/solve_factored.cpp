@@ -168,18 +168,22 @@ Eigen::MatrixXd solve_factored(const FilterProblem& problem, FilterReport& repor
     FactoredStages stages(problem, report);
     const Eigen::MatrixXd q = stages.to_scaled(problem.coordinates);
     const double allowed = allowed_error(problem);
+    return stages.from_scaled(apply_factored_transfer(g, q, allowed, spectrum_upper_bound(stages.kt()), stages));
+}
 
+Eigen::MatrixXd apply_factored_transfer(const TransferFunction& g, const Eigen::MatrixXd& q, double allowed_error,
+                                        double spectrum_max, PoleGroupSolver& solver) {
     if (g.second_order && g.poles.size() == 2 && g.poles[0].imag() != 0) {
         // G = Ginf + R/D with deg R <= 1: the iterative part only carries the band that G
         // changes, not the whole shape, so it needs fewer iterations for the same accuracy
         // (notch and exaggeration filters have Ginf near 1).
         const SecondOrderCoefficients& c = *g.second_order;
         const double g_inf = c.b2 / c.a2;
-        const Eigen::MatrixXd rhs = stages.polynomial({c.b0 - g_inf * c.a0, c.b1 - g_inf * c.a1}, q);
-        const Eigen::MatrixXd x = stages.conjugate_pair(g.poles[0], rhs, allowed * std::abs(c.a2), 0.5);
-        return stages.from_scaled(g_inf * q + x / c.a2);
+        const Eigen::MatrixXd rhs = solver.polynomial({c.b0 - g_inf * c.a0, c.b1 - g_inf * c.a1}, q);
+        const Eigen::MatrixXd x = solver.conjugate_pair(g.poles[0], rhs, allowed_error * std::abs(c.a2), 0.5);
+        return g_inf * q + x / c.a2;
     }
-    return stages.from_scaled(apply_cascade(g, q, allowed, spectrum_upper_bound(stages.kt()), stages));
+    return apply_cascade(g, q, allowed_error, spectrum_max, solver);
 }
 
 } // namespace geofilter::detail

@@ -1,0 +1,25 @@
+// One run of a GeoFilter command-line tool, from its arguments to its exit status: the
+// whole of `geofilter`, and of `geofilter-mpi` on the rank that reads and writes the files.
+#pragma once
+
+#include "cli_options.h"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace geofilter::cli {
+
+struct CommandLineTool {
+    std::string program = "geofilter";  // the prefix of every message
+    // The factored solver's algorithm on another engine; empty: the core's.
+    ExternalFactoredSolver external_solver;
+    // Refuses (throws Error) options the tool cannot run, before any file is read.
+    std::function<void(const CliOptions&)> check_options;
+};
+
+// Parses `args` (without the program name), runs, prints the log, or one error line:
+// exit status 0, 1 (refused) or 2 (bad command line). No output file unless it succeeded.
+int run_command_line(const std::vector<std::string>& args, const CommandLineTool& tool);
+
+} // namespace geofilter::cli

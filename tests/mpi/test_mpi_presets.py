@@ -1,0 +1,79 @@
+"""geofilter-mpi on N ranks gives geofilter's coordinates on a real mesh for every preset of
+the filter table (and the feature, operator and boundary options that reach the solver),
+to 1e-7 of the bounding-box diagonal. N comes from $GEOFILTER_MPI_RANKS (one ctest per N)."""
+
+import os
+import unittest
+
+import numpy as np
+
+import cli_harness
+import filter_table
+import mpi_harness
+
+RANKS = int(os.environ.get("GEOFILTER_MPI_RANKS", "2"))
+AGREEMENT = 1e-7  # of the bounding-box diagonal, at every vertex
+
+
+def feature_selection(vertices):
+    """A ball of radius 0.06 about the bunny's highest vertex (the tip of an ear)."""
+    top = vertices[np.argmax(vertices[:, 1])]
+    return ["--select-sphere", ",".join(f"{c:.6f}" for c in top) + ",0.06"]
+
+
+def cases(vertices):
+    """(name, preset, options): every filter of the table at its defaults, then the options
+    that change what the distributed solver is given."""
+    out = [(f["cli_name"], f["cli_name"], []) for f in filter_table.TABLE if f["kind"] != "Measure"]
+    assert len(out) >= 9, "the filter table lost its presets"
+    ear = feature_selection(vertices)
+    out += [
+        ("exaggerate from a selected feature", "exaggerate", ear),
+        ("denoise of a selected bump (bump base)", "denoise", ear),
+        ("lowpass with the boundary fixed", "lowpass", ["--fix-boundary"]),
+        ("butterworth order 3 (a real pole)", "butterworth", ["--order", "3"]),
+        ("butterworth on the intrinsic Delaunay operator", "butterworth", ["--operator", "intrinsic"]),
+        ("polezero with two poles", "polezero", ["--p1", "40", "--p2", "900"]),
+    ]
+    return out
+
+
+class PresetsMatchGeofilter(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.mesh = mpi_harness.real_mesh()
+        cls.dir = cli_harness.workdir(f"mpi_presets_np{RANKS}")
+        vertices = cli_harness.read_mesh(cls.mesh).vertices
+        cls.diagonal = float(np.linalg.norm(vertices.max(0) - vertices.min(0)))
+        cls.input = vertices
+
+    def test_every_preset_matches_geofilter(self):
+        for index, (name, preset, options) in enumerate(cases(self.input)):
+            with self.subTest(case=name):
+                reference = os.path.join(self.dir, f"{index}_reference.ply")
+                distributed = os.path.join(self.dir, f"{index}_np{RANKS}.ply")
+                p = cli_harness.run(preset, *options, self.mesh, reference, timeout=300)
+                self.assertEqual(p.returncode, 0, cli_harness.describe(p))
+                p = mpi_harness.run_mpi(RANKS, preset, *options, self.mesh, distributed)
+                self.assertEqual(p.returncode, 0, cli_harness.describe(p))
+                expected = cli_harness.read_mesh(reference).vertices
+                got = cli_harness.read_mesh(distributed).vertices
+                self.assertEqual(got.shape, expected.shape)
+                # The filter moved the mesh: agreeing with geofilter is not agreeing with the input.
+                self.assertGreater(np.abs(expected - self.input).max(), 1e3 * AGREEMENT * self.diagonal, name)
+                worst = np.abs(got - expected).max() / self.diagonal
+                self.assertLess(worst, AGREEMENT, f"{name}: differs from geofilter by {worst:.3g} of the diagonal")
+
+    def test_measure_reports_what_geofilter_reports(self):
+        ear = feature_selection(self.input)
+        single = cli_harness.run("measure", *ear, self.mesh)
+        self.assertEqual(single.returncode, 0, cli_harness.describe(single))
+        p = mpi_harness.run_mpi(RANKS, "measure", *ear, self.mesh)
+        self.assertEqual(p.returncode, 0, cli_harness.describe(p))
+        summary = [l for l in p.stdout.splitlines() if l.startswith("geofilter-mpi: measure:")]
+        self.assertEqual(len(summary), 1, cli_harness.describe(p))
+        self.assertIn(summary[0][len("geofilter-mpi"):], single.stdout)
+
+
+if __name__ == "__main__":
+    unittest.main()
