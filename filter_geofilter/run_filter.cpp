@@ -111,7 +111,7 @@ std::optional<Operator> operator_from_values(const FilterSpec& spec, const Param
     default: break;
     }
     // Automatic: a bump's size is geometric, so the cotangent operator; for per-vertex noise
-    // Denoise tries the umbrella and the cotangent operator on the mesh (denoise.h).
+    // Denoise tries the umbrella and the intrinsic Delaunay operator on the mesh (denoise.h).
     if (spec.kind == FilterKind::Denoise && !has_feature) return std::nullopt;
     return Operator::Cotangent;
 }

@@ -57,8 +57,9 @@ Points lower_onto_bump_base(const Points& input, const Points& filtered, const T
     for (Eigen::Index f = 0; f < triangles.rows(); ++f) {
         const Eigen::RowVector3d a = filtered.row(triangles(f, 0)), b = filtered.row(triangles(f, 1)),
                                  c = filtered.row(triangles(f, 2));
+        const double third_of_area = (b - a).cross(c - a).norm() / 6;
         for (int k = 0; k < 3; ++k) {
-            area[triangles(f, k)] += (b - a).cross(c - a).norm() / 6;
+            area[triangles(f, k)] += third_of_area;
             used[triangles(f, k)] = true;
         }
     }
