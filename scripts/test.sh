@@ -24,7 +24,10 @@ build=${GEOFILTER_BUILD_DIR:-$top/build}
 # No test may depend on the order tests run in.
 export GTEST_SHUFFLE=1
 echo "== tests (build: $build)"
-(cd "$build" && ctest --output-on-failure --timeout 900 "$@")
+# Two tests at a time (one per core): the tests that must run alone say so (RUN_SERIAL: the
+# MPI runs; RESOURCE_LOCK: one X server at a time).
+ctest_jobs=-j"$(nproc)"
+(cd "$build" && ctest "$ctest_jobs" --output-on-failure --timeout 900 "$@")
 
 echo "== the Debian package: installed, run through the system MeshLab and geofilter, removed"
 "$top/scripts/test-deb.sh"
@@ -42,7 +45,7 @@ fi
     -DGEOFILTER_BUILD_PLUGIN=OFF -DGEOFILTER_BUILD_PYTHON=OFF >/dev/null
 "${offline[@]}" cmake --build "$asan" -j"$(nproc)"
 (cd "$asan" && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
-    ctest --output-on-failure --timeout 900 -L 'unit|cli')
+    ctest "$ctest_jobs" --output-on-failure --timeout 900 -L 'unit|cli')
 
 echo "== MeshLab 2022.02 (FilterPlugin API) plugin"
 "$top/scripts/test-meshlab2022.sh"
