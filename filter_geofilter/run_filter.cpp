@@ -328,7 +328,7 @@ RunOutput run_filter(const FilterSpec& spec, const ParameterValues& values, cons
     if (out.report.fixed_vertices > 0)
         out.log.push_back(std::to_string(out.report.fixed_vertices) + " boundary vertices kept in place (fixBoundary)");
     const FilterReport& r = out.report;
-    out.log.push_back("solver " + std::string(solver_name(r.solver)) + ": " + std::to_string(r.active_vertices) + " vertices in " +
+    out.log.push_back("solver " + solver_used(r) + ": " + std::to_string(r.active_vertices) + " vertices in " +
                       std::to_string(r.components) + " component(s), " + std::to_string(r.iterations) +
                       " CG iterations, accurate to " + num(options.tolerance) +
                       " of the bounding-box diagonal (error bound), relative residual " + num(r.relative_residual) +

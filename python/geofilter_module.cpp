@@ -142,7 +142,7 @@ py::tuple run(const FilterSpec& spec, const py::object& v, const py::object& f, 
     RunOutput out;
     {
         py::gil_scoped_release release;  // the solve may take seconds: let other threads run
-        out = run_filter(spec, values, RunInput{points, triangles, faces, {}});
+        out = run_filter(spec, values, RunInput{points, triangles, faces, {}, nullptr, nullptr, {}});
     }
     out.log.insert(out.log.begin(), log.begin(), log.end());
     if (spec.kind == FilterKind::Measure) return py::make_tuple(feature_of(*out.feature), report_of(out));

@@ -202,7 +202,7 @@ int run(const CliOptions& o, const CommandLineTool& tool) {
         std::cout << program << ": " << spec.cli_name << ": " << o.input << " -> " << o.output << ": "
                   << out.report.active_vertices << " vertices filtered; " << design
                   << (feature.known ? "; feature r = " + num(feature.radius) : std::string()) << "; "
-                  << solver_name(out.report.solver) << ", " << num(seconds, 3) << " s" << std::endl;
+                  << solver_used(out.report) << ", " << num(seconds, 3) << " s" << std::endl;
     }
     return 0;
 }

@@ -24,6 +24,10 @@ const char* solver_name(Solver solver) {
     return solver == Solver::Factored ? "factored (sparse Cholesky)" : "Jacobi-PCG on eq. 9 (paper)";
 }
 
+std::string solver_used(const FilterReport& report) {
+    return report.external_solver.empty() ? solver_name(report.solver) : report.external_solver;
+}
+
 double estimated_filter_bytes(Eigen::Index vertices) { return 1500.0 * static_cast<double>(vertices); }
 
 namespace {

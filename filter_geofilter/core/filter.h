@@ -82,7 +82,13 @@ struct FilterReport {
     // What came from a FilterCache: "" (nothing), "mesh" (checks, Laplacian, analysis),
     // "mesh and factor", or "result" (the same filter as the run before).
     std::string reused;
+    // Set by an ExternalFactoredSolver that solved in its own way (geofilter-mpi's multigrid
+    // option), so that the log does not claim a factorisation that never happened.
+    std::string external_solver;
 };
+
+// The solver that produced a report, in words for the log.
+std::string solver_used(const FilterReport& report);
 
 // Filters every vertex that belongs to a usable face; other vertices keep their position.
 // Each connected component is filtered about its own area-weighted centroid, so the result

@@ -173,7 +173,7 @@ inline FilterRun runOnMesh(const FilterSpec &spec, CMeshO &cm, const RichParamet
 	const ParameterValues values = readValues(spec, par, !run.mesh.selectedFaces.empty());
 	run.out = run_filter(spec, values,
 	                     RunInput{run.mesh.points, run.mesh.triangles, run.mesh.selectedFaces, progressFor(cb, spec),
-	                              &run.mesh.quality, &cache});
+	                              &run.mesh.quality, &cache, {}});
 	return run;
 }
 
