@@ -536,6 +536,10 @@ Eigen::MatrixXd solve_collectively(MPI_Comm comm, const FactoredProblem* problem
         check(MatNorm(local.kt, NORM_INFINITY, &spectrum_max), "bounding Kt's spectrum");  // Gershgorin, as the core
         DistributedStages stages(comm, local.kt, header, report);
         solved_local = detail::apply_factored_transfer(header.g, local.q, header.allowed_error, spectrum_max, stages);
+        report.external_solver = (header.pole_solver == PoleSolver::Multigrid
+                                      ? "CG with hypre BoomerAMG (multigrid, no factor)"
+                                      : "factored (MUMPS sparse Cholesky)") +
+                                 std::string(" over ") + std::to_string(ranks.size) + " MPI rank(s)";
         if (options && options->log) {
             std::string line = "distributed over " + std::to_string(ranks.size) + " rank(s)" +
                                (ranks.size > 1 ? " (PT-Scotch partition)" : "") + ": rows per rank";

@@ -41,6 +41,10 @@ class MultigridMatchesGeofilter(unittest.TestCase):
                 p = mpi_harness.run_mpi(RANKS, preset, *options, "--pole-solver", "multigrid", mesh, distributed)
                 self.assertEqual(p.returncode, 0, cli_harness.describe(p))
                 self.assertNotIn("MUMPS factor", p.stderr, "the multigrid run built a factor")
+                summary = [l for l in p.stdout.splitlines() if l.startswith(f"geofilter-mpi: {preset}:")]
+                self.assertEqual(len(summary), 1, cli_harness.describe(p))
+                self.assertIn("BoomerAMG", summary[0], "the summary names another solver than the one that ran")
+                self.assertNotIn("factored", summary[0], "the summary claims a factorisation")
                 expected = cli_harness.read_mesh(reference).vertices
                 got = cli_harness.read_mesh(distributed).vertices
                 self.assertGreater(np.abs(expected - data.vertices).max(), 1e3 * TOLERANCE * diagonal)
