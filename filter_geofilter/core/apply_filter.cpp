@@ -262,13 +262,33 @@ Points apply_filter_unguarded(const Points& points, const Triangles& triangles, 
     detail::FilterProblem problem{st.solved_laplacian(), st.solved_coordinates, g, options, st.size};
     if (cacheable) problem.factor_slot = &st.factors;
     Eigen::MatrixXd solved;
-    if (options.solver == Solver::Factored && options.external_solver)
-        solved = options.external_solver(FactoredProblem{problem.laplacian, problem.coordinates, g,
-                                                         detail::allowed_error(problem), options.max_iterations},
-                                         report);
-    else
+    if (options.solver == Solver::Factored && options.external_solver) {
+        FactoredProblem handed{{}, {}, g, detail::allowed_error(problem), options.max_iterations};
+        // Without a cache nothing reads the solved Laplacian and coordinates after the solve:
+        // the engine gets them, not copies (swapped: Eigen's sparse matrix has no move).
+        Laplacian& laplacian = st.interior ? *st.interior : st.laplacian;
+        if (cacheable) {
+            handed.laplacian = laplacian;
+            handed.coordinates = st.solved_coordinates;
+        } else {
+            handed.laplacian.stiffness.swap(laplacian.stiffness);
+            handed.laplacian.mass.swap(laplacian.mass);
+            handed.coordinates.swap(st.solved_coordinates);
+            // Nor the prepared mesh's copies (nor the centred one without a fixed boundary),
+            // which would otherwise sit through the engine's factorisation.
+            st.mesh.points.resize(0, 0);
+            st.mesh.triangles.resize(0, 0);
+            if (st.on_boundary.empty()) st.centred.resize(0, 0);
+            if (st.interior) {  // the whole Laplacian too: the interior one is what was handed over
+                SparseMatrix().swap(st.laplacian.stiffness);
+                st.laplacian.mass.resize(0);
+            }
+        }
+        solved = options.external_solver(handed, report);
+    } else {
         solved = options.solver == Solver::Factored ? detail::solve_factored(problem, report)
                                                     : detail::solve_jacobi_pcg(problem, report);
+    }
     if (reuse_mesh) report.reused = had_factor && report.seconds_factorization == 0 ? "mesh and factor" : "mesh";
 
     Eigen::MatrixXd filtered;

@@ -36,15 +36,17 @@ struct FilterReport;
 // same way on other hardware (geofilter-mpi: distributed over MPI ranks). `coordinates` are
 // centred (each component about its centroid), `laplacian` has positive mass everywhere, and
 // the result, G(M^-1 K) applied to the coordinates, may be off by at most `allowed_error`
-// (Frobenius norm in the frame q = M^1/2 p).
+// (Frobenius norm in the frame q = M^1/2 p). `laplacian` and `coordinates` are the engine's
+// to free once it has built its own form of them (geofilter-mpi's rank 0 would otherwise
+// hold both through the factorisation, where its memory peaks).
 struct FactoredProblem {
-    const Laplacian& laplacian;
-    const Eigen::MatrixXd& coordinates;
+    Laplacian laplacian;
+    Eigen::MatrixXd coordinates;
     const TransferFunction& g;
     double allowed_error;
     int max_iterations;
 };
-using ExternalFactoredSolver = std::function<Eigen::MatrixXd(const FactoredProblem&, FilterReport&)>;
+using ExternalFactoredSolver = std::function<Eigen::MatrixXd(FactoredProblem&, FilterReport&)>;
 
 struct FilterOptions {
     Solver solver = Solver::Factored;

@@ -34,7 +34,7 @@ struct EngineOptions {
 // On rank 0: wakes the other ranks and solves `problem` with them (`options` reach them
 // too). Throws Error as the core's solver would (the same messages); every rank sees the
 // same failure.
-Eigen::MatrixXd solve_on_all_ranks(MPI_Comm comm, const FactoredProblem& problem, FilterReport& report,
+Eigen::MatrixXd solve_on_all_ranks(MPI_Comm comm, FactoredProblem& problem, FilterReport& report,
                                    const EngineOptions& options);
 
 // On every other rank: takes part in each solve rank 0 asks for; returns rank 0's exit status

@@ -92,7 +92,7 @@ int main(int argc, char** argv) {
         }
         if (status == 0) {
             engine.log = &engine_log;
-            tool.external_solver = [&](const FactoredProblem& problem, FilterReport& report) {
+            tool.external_solver = [&](FactoredProblem& problem, FilterReport& report) {
                 return mpi::solve_on_all_ranks(comm, problem, report, engine);
             };
             status = cli::run_command_line(args, tool);
