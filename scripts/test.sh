@@ -24,8 +24,8 @@ build=${GEOFILTER_BUILD_DIR:-$top/build}
 # No test may depend on the order tests run in.
 export GTEST_SHUFFLE=1
 echo "== tests (build: $build)"
-# Two tests at a time (one per core): the tests that must run alone say so (RUN_SERIAL: the
-# MPI runs; RESOURCE_LOCK: one X server at a time).
+# Two tests at a time (one per core): the tests that need more say so (PROCESSORS: an MPI
+# run claims a core per rank; RESOURCE_LOCK: one X server at a time).
 ctest_jobs=-j"$(nproc)"
 (cd "$build" && ctest "$ctest_jobs" --output-on-failure --timeout 900 "$@")
 
@@ -34,15 +34,17 @@ echo "== the Debian package: installed, run through the system MeshLab and geofi
 
 echo "== unit and command-line tests under AddressSanitizer + UndefinedBehaviorSanitizer"
 asan="$build-asan"
-# Without the plugin nothing of MeshLab is needed: this build is configured and built with
-# no network at all (a network namespace of its own) wherever the machine allows one.
+# Only what the sanitizer runs is built (not geofilter-mpi: Open MPI's own allocations would
+# drown the leak report). Without the plugin nothing of MeshLab is needed: this build is
+# configured and built with no network at all (a network namespace of its own) wherever the
+# machine allows one.
 offline=()
 if unshare -rn true 2>/dev/null; then
     offline=(unshare -rn)
     echo "(configured and built with no network: ${offline[*]})"
 fi
 "${offline[@]}" cmake -S "$top" -B "$asan" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGEOFILTER_SANITIZE=ON \
-    -DGEOFILTER_BUILD_PLUGIN=OFF -DGEOFILTER_BUILD_PYTHON=OFF >/dev/null
+    -DGEOFILTER_BUILD_PLUGIN=OFF -DGEOFILTER_BUILD_PYTHON=OFF -DGEOFILTER_BUILD_MPI=OFF >/dev/null
 "${offline[@]}" cmake --build "$asan" -j"$(nproc)"
 (cd "$asan" && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
     ctest "$ctest_jobs" --output-on-failure --timeout 900 -L 'unit|cli')
