@@ -4,7 +4,6 @@
 #pragma once
 
 #include "core/types.h"
-#include "core/types.h"
 
 #include <memory>
 #include <optional>

@@ -689,8 +689,14 @@ TEST(Region, QualityWeightOneIsTheWholeMeshFilterAndZeroChangesNothing)
 	apply(one, byName(QString("GeoFilter: Band Exaggeration")), values);
 	apply(zero, byName(QString("GeoFilter: Band Exaggeration")), values);
 	ASSERT_EQ(whole.mm()->cm.vert.size(), m1.cm.vert.size());
+	// Equal to the solver's tolerance, not bit for bit: the whole-mesh run may reuse a factor
+	// the plugin's FilterCache holds from an earlier test on the same sphere (tests run in
+	// random order), and a reused factor takes other CG steps. Both are within 1e-7 of the
+	// diagonal (2) of the exact filter; the float write-back adds its rounding.
+	double worst = 0;
 	for (size_t i = 0; i < m1.cm.vert.size(); ++i)
-		ASSERT_TRUE(whole.mm()->cm.vert[i].cP() == m1.cm.vert[i].cP()) << "vertex " << i;
+		worst = std::max(worst, double((whole.mm()->cm.vert[i].cP() - m1.cm.vert[i].cP()).Norm()));
+	EXPECT_LT(worst, 1e-6 * 2);  // a NaN fails too
 	// Coordinates untouched; normals are recomputed from the same coordinates.
 	const geofilter::Mesh a = coreCopy(m0.cm);
 	MeshDocument fresh;
