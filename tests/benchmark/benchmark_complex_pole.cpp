@@ -16,15 +16,12 @@
 #include "core/icosphere.h"
 #include "core/laplace.h"
 #include "core/transfer_function.h"
+#include "benchmark_support.h"
 #include "mesh_io.h"
-#include "shapes.h"
 
 #include <mpi.h>
 #include <zmumps_c.h>
 
-#include <sys/resource.h>
-
-#include <chrono>
 #include <cmath>
 #include <complex>
 #include <cstdio>
@@ -33,22 +30,14 @@
 #include <vector>
 
 using namespace geofilter;
+using namespace geofilter::benchmark;
 
 namespace {
-
-double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
-
-double peak_rss_mib() {
-    rusage u{};
-    getrusage(RUSAGE_SELF, &u);
-    return u.ru_maxrss / 1024.0;
-}
 
 Mesh load(const std::string& spec) {
     Mesh m;
     if (spec == "torus") {
-        m = torus(1000, 1000, 1.0, 0.4);
-        perturb_radially(m, 0.0005, 23);
+        m = perturbed_torus_1m();
     } else {
         const auto colon = spec.rfind(':');
         const std::string path = spec.substr(0, colon);
@@ -57,8 +46,7 @@ Mesh load(const std::string& spec) {
         m.triangles = file.triangles();
         for (int l = colon == std::string::npos ? 0 : std::stoi(spec.substr(colon + 1)); l > 0; --l) m = subdivide(m);
     }
-    const Eigen::RowVector3d lo = m.points.colwise().minCoeff(), hi = m.points.colwise().maxCoeff();
-    m.points = (m.points.rowwise() - 0.5 * (lo + hi)) / (hi - lo).norm();
+    normalise(m);
     return m;
 }
 

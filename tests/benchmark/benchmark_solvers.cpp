@@ -7,6 +7,7 @@
 #include "core/filter.h"
 #include "core/laplace.h"
 #include "core/region.h"
+#include "benchmark_support.h"
 #include "shapes.h"
 #include "core/solvers.h"
 #include "core/transfer_function.h"
@@ -34,6 +35,7 @@
 #include <vector>
 
 using namespace geofilter;
+using namespace geofilter::benchmark;
 
 namespace {
 
@@ -44,23 +46,10 @@ class TVertex : public vcg::Vertex<TTypes, vcg::vertex::Coord3f, vcg::vertex::Bi
 class TFace : public vcg::Face<TTypes, vcg::face::VertexRef, vcg::face::BitFlags> {};
 class TMesh : public vcg::tri::TriMesh<std::vector<TVertex>, std::vector<TFace>> {};
 
-double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
-
-double peak_rss_mib() {
-    rusage u{};
-    getrusage(RUSAGE_SELF, &u);
-    return u.ru_maxrss / 1024.0;
-}
-
 struct NamedMesh {
     std::string name;
     Mesh mesh;
 };
-
-void normalise(Mesh& m) {
-    const Eigen::RowVector3d lo = m.points.colwise().minCoeff(), hi = m.points.colwise().maxCoeff();
-    m.points = (m.points.rowwise() - 0.5 * (lo + hi)) / (hi - lo).norm();
-}
 
 Mesh read_off(const std::string& path) {
     std::ifstream in(path);
@@ -303,11 +292,7 @@ int main(int argc, char** argv) {
             return NamedMesh{"perturbed torus 316x316", m};
         });
         makers.push_back(perturbed_icosphere(7));  // 163,842
-        makers.push_back([]() {
-            Mesh m = torus(1000, 1000, 1.0, 0.4);
-            perturb_radially(m, 0.0005, 23);
-            return NamedMesh{"perturbed torus 1000x1000", m};
-        });
+        makers.push_back([]() { return NamedMesh{"perturbed torus 1000x1000", perturbed_torus_1m()}; });
     }
     // A real scan, subdivided (each level splits every triangle in four): 17k, 280k, 1.1M.
     const std::string human = meshes_dir + "/man.off";
