@@ -256,6 +256,7 @@ RunOutput run_filter(const FilterSpec& spec, const ParameterValues& values, cons
     options.max_iterations = static_cast<int>(cap);
     options.progress = input.progress;
     options.external_solver = input.external_solver;
+    options.complex_factorization = input.complex_factorization;
     options.fix_boundary = value_of(spec, values, param::fix_boundary) != 0;
 
     // Denoise with nothing selected designs on the mesh: it tries its candidates there and

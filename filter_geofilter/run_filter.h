@@ -31,6 +31,9 @@ struct RunInput {
     FilterCache* cache = nullptr;
     // The factored solver's algorithm on another engine (FilterOptions::external_solver).
     ExternalFactoredSolver external_solver;
+    // Exact solves of complex pole pairs (FilterOptions::complex_factorization); adapters pass
+    // exact_pair_factorization() (exact_pairs.h), empty: CG for every pair.
+    ComplexShiftedFactorization complex_factorization;
 };
 
 struct RunOutput {

@@ -1,6 +1,7 @@
 // The Python module `geofilter`: the filter table's filters on numpy arrays, without
 // MeshLab. A thin adapter like the MeshLab plugins: it reads arrays and keyword arguments,
 // calls run_filter, and returns arrays and the report.
+#include "exact_pairs.h"
 #include "run_filter.h"
 
 #include <pybind11/numpy.h>
@@ -142,7 +143,7 @@ py::tuple run(const FilterSpec& spec, const py::object& v, const py::object& f, 
     RunOutput out;
     {
         py::gil_scoped_release release;  // the solve may take seconds: let other threads run
-        out = run_filter(spec, values, RunInput{points, triangles, faces, {}, nullptr, nullptr, {}});
+        out = run_filter(spec, values, RunInput{points, triangles, faces, {}, nullptr, nullptr, {}, exact_pair_factorization()});
     }
     out.log.insert(out.log.begin(), log.begin(), log.end());
     if (spec.kind == FilterKind::Measure) return py::make_tuple(feature_of(*out.feature), report_of(out));

@@ -10,6 +10,7 @@ packages=(
     dpkg-dev                              # apt-get source / dpkg-source, for MeshLab's headers and vcglib (the plugin only)
     qtbase5-dev libqt5opengl5-dev libglew-dev   # what MeshLab's headers include
     libeigen3-dev libsuitesparse-dev      # the core: Eigen and CHOLMOD
+    libmumps-seq-dev                      # exact solves of sharp complex pole pairs (sequential MUMPS)
     libopenblas0-pthread                  # a multithreaded BLAS under CHOLMOD (2x faster factorisation)
     libgtest-dev                          # unit tests
     clang libclang-rt-14-dev              # libFuzzer (scripts/fuzz.sh)

@@ -161,7 +161,7 @@ int run(const CliOptions& o, const CommandLineTool& tool) {
                     " or --select-stored");
     const RunOutput out =
         run_filter(spec, values, RunInput{mesh.points(), mesh.triangles(), selected, progress, &mesh.vertex_quality(),
-                                          nullptr, tool.external_solver});
+                                          nullptr, tool.external_solver, tool.complex_factorization});
     bar.clear();
     if (interrupted) throw Error("interrupted");
     if (out.feature) feature = {true, out.feature->radius};

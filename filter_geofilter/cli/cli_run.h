@@ -14,6 +14,8 @@ struct CommandLineTool {
     std::string program = "geofilter";  // the prefix of every message
     // The factored solver's algorithm on another engine; empty: the core's.
     ExternalFactoredSolver external_solver;
+    // Exact solves of complex pole pairs in the core's solver; empty: CG for every pair.
+    ComplexShiftedFactorization complex_factorization;
     // Refuses (throws Error) options the tool cannot run, before any file is read.
     std::function<void(const CliOptions&)> check_options;
 };

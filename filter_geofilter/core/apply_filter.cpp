@@ -25,14 +25,20 @@ const char* solver_name(Solver solver) {
 }
 
 std::string solver_used(const FilterReport& report) {
-    return report.external_solver.empty() ? solver_name(report.solver) : report.external_solver;
+    std::string used = report.external_solver.empty() ? solver_name(report.solver) : report.external_solver;
+    if (report.exact_pairs > 0)
+        used += "; " + std::to_string(report.exact_pairs) + " complex pole pair(s) solved exactly by " + report.exact_pair_method;
+    if (!report.exact_pair_note.empty()) used += "; " + report.exact_pair_note;
+    return used;
 }
 
 double estimated_filter_bytes(Eigen::Index vertices) { return 1500.0 * static_cast<double>(vertices); }
 
 namespace {
 
-double available_memory_bytes() {
+} // namespace
+
+double detail::available_memory_bytes() {
     std::ifstream meminfo("/proc/meminfo");
     std::string key;
     double kib = 0;
@@ -41,6 +47,8 @@ double available_memory_bytes() {
         if (key == "MemAvailable:") return kib * 1024.0;
     return 0;  // unknown: no up-front check
 }
+
+namespace {
 
 std::string gib(double bytes) {
     char text[32];
@@ -229,7 +237,7 @@ Points apply_filter_unguarded(const Points& points, const Triangles& triangles, 
     const bool reuse_mesh = slot && slot->built_from(points, triangles, options);
     if (!reuse_mesh) {
         slot.reset();  // free the old mesh's factors before building the new ones
-        const double budget = options.memory_budget_bytes > 0 ? options.memory_budget_bytes : available_memory_bytes();
+        const double budget = options.memory_budget_bytes > 0 ? options.memory_budget_bytes : detail::available_memory_bytes();
         if (budget > 0 && estimated_filter_bytes(points.rows()) > budget)
             throw Error("the mesh is too large for the memory available: filtering " + std::to_string(points.rows()) +
                         " vertices needs about " + gib(estimated_filter_bytes(points.rows())) + ", only " + gib(budget) +

@@ -2,6 +2,7 @@
 // without eigenvectors.
 #pragma once
 
+#include "complex_shifted_factor.h"
 #include "filter_cache.h"
 #include "operators.h"
 #include "transfer_function.h"
@@ -70,6 +71,10 @@ struct FilterOptions {
     // Runs the factored solver's algorithm instead of the core's (Solver::Factored only);
     // empty: the core's own.
     ExternalFactoredSolver external_solver;
+    // How the factored solver may factorise Kt - r I for a complex pole pair r, conj r, to
+    // solve the pair exactly where CG on it is predicted to cost more (sharp resonances:
+    // notch, exaggeration, high-order Butterworth); empty: every pair by CG.
+    ComplexShiftedFactorization complex_factorization;
 };
 
 struct FilterReport {
@@ -87,6 +92,9 @@ struct FilterReport {
     // Set by an ExternalFactoredSolver that solved in its own way (geofilter-mpi's multigrid
     // option), so that the log does not claim a factorisation that never happened.
     std::string external_solver;
+    int exact_pairs = 0;            // complex pole pairs solved by a factorisation of Kt - r I, not CG
+    std::string exact_pair_method;  // that factorisation, in words
+    std::string exact_pair_note;    // why a pair predicted to pay was solved by CG after all
 };
 
 // The solver that produced a report, in words for the log.

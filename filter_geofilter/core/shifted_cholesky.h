@@ -4,11 +4,13 @@
 // Internal to the core.
 #pragma once
 
+#include "complex_shifted_factor.h"
 #include "laplace.h"
 
 #include <Eigen/CholmodSupport>
 
 #include <cmath>
+#include <string>
 
 namespace geofilter::detail {
 
@@ -43,10 +45,13 @@ struct FactorState {
     Eigen::VectorXd sqrt_mass;
     SparseMatrix kt;
     ShiftedCholesky cholesky;       // constructed after kt: analyses its pattern
+    std::unique_ptr<ComplexShiftedFactor> complex;  // for exact pair solves, built when first used
     double seconds_per_factorization = 0;   // the last numeric factorisation; 0 = none yet
     double seconds_per_pair_iteration = 0;  // the last conjugate-pair CG run; 0 = none yet
     int last_pair_iterations = 0;           // its iterations
     double last_pair_condition = 0;         // and its preconditioned range's high / low
+    double seconds_per_complex_factorization = 0;  // the last one; 0 = none yet
+    std::string exact_pair_note;    // why exact pair solves failed on this state ("" = they did not)
 };
 
 } // namespace geofilter::detail

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <complex>
 #include <memory>
+#include <optional>
 
 namespace geofilter::detail {
 
@@ -75,8 +76,10 @@ public:
     // and high = 1 on any mesh.
     Eigen::MatrixXd conjugate_pair(std::complex<double> r, const Eigen::MatrixXd& y, double allowed_error,
                                    double progress) override {
-        const double twice_re = 2 * r.real(), modulus2 = std::norm(r);
         const double shift = preconditioner_shift(r);
+        if (exact_pair_pays(r, shift))
+            if (std::optional<Eigen::MatrixXd> x = exact_pair(r, y, allowed_error, progress)) return *x;
+        const double twice_re = 2 * r.real(), modulus2 = std::norm(r);
         factorize(shift, progress);
         const auto t = std::chrono::steady_clock::now();
         const SparseMatrix& kt = state_.kt;
@@ -111,6 +114,103 @@ public:
     }
 
 private:
+    // Whether factorising Kt - r I is predicted to cost less than CG preconditioned at `shift`.
+    // Costs in units of one real factorisation of Kt + c I unless measured on this state:
+    // measured on the 416k-vertex scan and on the benchmark's 1M meshes, one CG iteration on a
+    // pair costs ~0.14 of it, a complex LDL^T 1.6-3.0 (3 taken), and CG needs ~6.5
+    // sqrt(high / low) iterations at the default tolerance (11, 42 and 44 measured for the
+    // README's lowpass, notch and exaggeration, sqrt = 1.7, 6.5, 7.7). So the lowpass stays
+    // on CG and the sharp resonances go to the exact solve.
+    bool exact_pair_pays(std::complex<double> r, double shift) const {
+        if (!problem_.options.complex_factorization || !state_.exact_pair_note.empty()) return false;
+        if (state_.complex && state_.complex->holds(r)) return true;
+        constexpr double complex_per_real = 3.0, iteration_per_real = 0.14;
+        const double measured_real = state_.seconds_per_factorization, measured_complex = state_.seconds_per_complex_factorization;
+        const double factorization = measured_real > 0      ? measured_real
+                                     : measured_complex > 0 ? measured_complex / complex_per_real
+                                                            : 1.0;
+        const double complex_factorization = measured_complex > 0 ? measured_complex : complex_per_real * factorization;
+        const double iteration = measured_real > 0 && state_.seconds_per_pair_iteration > 0
+                                     ? state_.seconds_per_pair_iteration
+                                     : iteration_per_real * factorization;
+        const PreconditionedRange range = pair_preconditioner_range(r, shift);
+        const double condition = range.high / range.low;
+        const double iterations = state_.last_pair_iterations > 0
+                                      ? state_.last_pair_iterations * std::sqrt(condition / state_.last_pair_condition)
+                                      : 6.5 * std::sqrt(condition);
+        const bool held = state_.cholesky.has_factor() && state_.cholesky.shift() == shift;
+        return (held ? 0.0 : factorization) + iterations * iteration > complex_factorization;
+    }
+
+    // Im((Kt - r)^-1 y) / Im r, which is ((Kt - r)(Kt - conj r))^-1 y, by a factorisation of
+    // Kt - r I with iterative refinement. With rho = y - (Kt - r) z the residual, the error
+    // in z is at most |rho| / d (d = min over s >= 0 of |s - r|, the spectrum of Kt being real
+    // and non-negative), and in the pair at most that over Im r: a bound, as CG's. Empty (and
+    // a note in the report) when the factorisation is refused or fails: CG then solves it.
+    std::optional<Eigen::MatrixXd> exact_pair(std::complex<double> r, const Eigen::MatrixXd& y, double allowed_error,
+                                              double progress) {
+        // Not tried again on this state; the factor's memory goes back before CG needs its own.
+        const auto give_up = [&](const std::string& why) {
+            state_.complex.reset();
+            state_.exact_pair_note = "complex pole pairs by CG: the exact solve was not used (" + why + ")";
+            report_.exact_pair_note = state_.exact_pair_note;
+            return std::nullopt;
+        };
+        const FilterOptions& options = problem_.options;
+        if (!state_.complex) {
+            report_progress(options, progress, "analysing for the exact pole-pair solve");
+            const auto t = std::chrono::steady_clock::now();
+            try {
+                state_.complex = options.complex_factorization(state_.kt);
+            } catch (const std::exception& e) {
+                return give_up(e.what());
+            }
+            report_.seconds_factorization += seconds_since(t);
+        }
+        ComplexShiftedFactor& factor = *state_.complex;
+        if (!factor.holds(r)) {
+            const double needed = factor.estimated_factorization_bytes(), available = available_memory_bytes();
+            if (available > 0 && needed > available)
+                return give_up("it would need " + format_number(needed / (1 << 20), 3) + " MiB, " +
+                               format_number(available / (1 << 20), 3) + " MiB are available");
+            report_progress(options, progress, "factorising Kt - r I");
+            const auto t = std::chrono::steady_clock::now();
+            try {
+                factor.factorize(r);
+            } catch (const std::exception& e) {
+                return give_up(e.what());
+            }
+            state_.seconds_per_complex_factorization = seconds_since(t);
+            report_.seconds_factorization += state_.seconds_per_complex_factorization;
+        }
+        const auto t = std::chrono::steady_clock::now();
+        const double bound_per_residual = 1 / (std::sqrt(pair_operator_lower_bound(r)) * std::abs(r.imag()));
+        const SparseMatrix& kt = state_.kt;
+        try {
+            Eigen::MatrixXcd z = factor.solve(y.cast<std::complex<double>>());
+            for (int refinement = 0;; ++refinement) {
+                const Eigen::MatrixXd z_re = z.real(), z_im = z.imag();
+                Eigen::MatrixXcd rho(y.rows(), y.cols());
+                rho.real() = y - kt * z_re + r.real() * z_re - r.imag() * z_im;
+                rho.imag() = r.real() * z_im + r.imag() * z_re - kt * z_im;
+                const double residual = rho.norm();
+                report_.relative_residual = std::max(report_.relative_residual, residual / std::max(y.norm(), 1e-300));
+                if (residual * bound_per_residual <= allowed_error) break;
+                if (refinement == 3)
+                    return give_up("its error bound stayed " +
+                                   format_number(residual * bound_per_residual / allowed_error, 3) +
+                                   " times what the tolerance allows");
+                z += factor.solve(rho);
+            }
+            report_.seconds_solve += seconds_since(t);
+            ++report_.exact_pairs;
+            report_.exact_pair_method = factor.name();
+            return Eigen::MatrixXd(z.imag() / r.imag());
+        } catch (const std::exception& e) {
+            return give_up(e.what());
+        }
+    }
+
     // The cache's state when the problem brings a slot for one, else a state of this run's
     // own; built (the symbolic analysis) when the slot is empty.
     static FactorState& state_for(const FilterProblem& problem, FilterReport& report,

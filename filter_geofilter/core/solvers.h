@@ -37,6 +37,9 @@ Eigen::MatrixXd solve_jacobi_pcg(const FilterProblem& problem, FilterReport& rep
 // Horner: c_n Kt^n y + ... + c_0 y (c ascending).
 Eigen::MatrixXd apply_polynomial(const SparseMatrix& kt, const std::vector<double>& c, const Eigen::MatrixXd& y);
 
+// What /proc/meminfo reports as available (MemAvailable), in bytes; 0 if unknown.
+double available_memory_bytes();
+
 // The fill-reducing ordering every CHOLMOD factorisation of the project uses.
 void use_amd_ordering(cholmod_common& common);
 

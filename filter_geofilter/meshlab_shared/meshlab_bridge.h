@@ -8,6 +8,7 @@
 // above come from there, and which header declares them is exactly what differs.
 #pragma once
 
+#include "exact_pairs.h"
 #include "run_filter.h"
 
 #include <vcg/complex/algorithms/update/bounding.h>
@@ -173,7 +174,7 @@ inline FilterRun runOnMesh(const FilterSpec &spec, CMeshO &cm, const RichParamet
 	const ParameterValues values = readValues(spec, par, !run.mesh.selectedFaces.empty());
 	run.out = run_filter(spec, values,
 	                     RunInput{run.mesh.points, run.mesh.triangles, run.mesh.selectedFaces, progressFor(cb, spec),
-	                              &run.mesh.quality, &cache, {}});
+	                              &run.mesh.quality, &cache, {}, exact_pair_factorization()});
 	return run;
 }
 

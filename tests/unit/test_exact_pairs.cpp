@@ -1,0 +1,132 @@
+// Complex pole pairs solved exactly (a factorisation of Kt - r I, MUMPS's complex LDL^T)
+// where CG on them is predicted to cost more: the result must be the dense spectral filter's
+// to the tolerance, the cost rule must keep cheap pairs on CG, and a factorisation that is
+// refused or fails must leave the pair to CG with the same accuracy, saying why.
+#include "core/butterworth.h"
+#include "core/filter.h"
+#include "exact_pairs.h"
+#include "real_mesh.h"
+#include "spectral.h"
+
+#include <gtest/gtest.h>
+
+using namespace geofilter;
+using namespace geofilter::reference;
+
+namespace {
+
+FilterOptions with_exact_pairs(double tolerance = 1e-7) {
+    FilterOptions options;
+    options.tolerance = tolerance;
+    options.complex_factorization = exact_pair_factorization();
+    return options;
+}
+
+// A factorisation that never gets to factorise: too big for any machine, or failing.
+class RefusedFactor : public ComplexShiftedFactor {
+public:
+    explicit RefusedFactor(bool fails) : fails_(fails) {}
+    std::string name() const override { return "a refused factor"; }
+    double estimated_factorization_bytes() const override { return fails_ ? 0 : 1e30; }
+    void factorize(std::complex<double>) override {
+        if (fails_) throw Error("the factor library failed");
+        ADD_FAILURE() << "factorised despite needing more memory than there is";
+    }
+    bool holds(std::complex<double>) const override { return false; }
+    Eigen::MatrixXcd solve(const Eigen::MatrixXcd& b) override { return b; }
+
+private:
+    bool fails_;
+};
+
+} // namespace
+
+#ifdef GEOFILTER_EXACT_PAIRS
+TEST(ExactPairs, BuiltWithMumps) { EXPECT_TRUE(exact_pair_factorization()); }
+#else
+TEST(ExactPairs, BuiltWithoutMumpsEveryPairGoesToCg) { EXPECT_FALSE(exact_pair_factorization()); }
+#endif
+
+TEST(ExactPairs, SharpResonancesOnARealScanAreSolvedExactlyToTheTolerance) {
+    if (!exact_pair_factorization()) GTEST_SKIP() << "configured with GEOFILTER_EXACT_PAIRS=OFF";
+    const Mesh& m = man_scan_patch();
+    const Spectrum spectrum = spectrum_of(m);
+    const double diag = bbox_diagonal(m.points);
+    const std::vector<SecondOrderSpec> sharp = {
+        {630, 1260, 1, 0.01, 1.1},  // notch (Fig. 9)
+        {25, 60, 1, 3, 0.9},        // band exaggeration (Fig. 10)
+        {200, 300, 1, 6, 0.5},      // a sharper exaggeration
+    };
+    for (const SecondOrderSpec& spec : sharp)
+        for (double tolerance : {1e-5, 1e-9}) {
+            SCOPED_TRACE("s1 = " + format_number(spec.s1) + ", G1 = " + format_number(spec.G1) + ", tolerance " +
+                         format_number(tolerance));
+            const TransferFunction g = design_second_order(spec);
+            FilterReport report;
+            const Points out = apply_filter(m.points, m.triangles, g, with_exact_pairs(tolerance), &report);
+            EXPECT_EQ(report.exact_pairs, 1) << report.exact_pair_note;
+            EXPECT_EQ(report.iterations, 0);
+            EXPECT_LE(area_weighted_rms(out - spectral_filter(spectrum, m.points, g), spectrum.mass), tolerance * diag);
+        }
+}
+
+TEST(ExactPairs, ButterworthMixesExactAndCgPairsAndMatchesTheSpectralFilter) {
+    if (!exact_pair_factorization()) GTEST_SKIP() << "configured with GEOFILTER_EXACT_PAIRS=OFF";
+    const Mesh& m = man_scan_patch();
+    const Spectrum spectrum = spectrum_of(m);
+    // Order 8 in s: pairs at 22.5, 67.5, 112.5 and 157.5 degrees from the cutoff direction;
+    // the one nearest the positive axis is the sharp one.
+    const TransferFunction g = design_butterworth_lowpass(400, 8);
+    FilterReport report;
+    const Points out = apply_filter(m.points, m.triangles, g, with_exact_pairs(), &report);
+    EXPECT_GE(report.exact_pairs, 1);
+    EXPECT_LE(report.exact_pairs, 3);  // the flattest pair is not worth a complex factorisation
+    EXPECT_GT(report.iterations, 0);
+    EXPECT_LE(area_weighted_rms(out - spectral_filter(spectrum, m.points, g), spectrum.mass), 1e-7 * bbox_diagonal(m.points));
+}
+
+TEST(ExactPairs, TheLowpassPairStaysOnCg) {
+    if (!exact_pair_factorization()) GTEST_SKIP() << "configured with GEOFILTER_EXACT_PAIRS=OFF";
+    const Mesh m = wavy_sheet(30);
+    FilterReport report;
+    apply_filter(m.points, m.triangles, design_second_order({25, 50, 1, 1.1, 0}), with_exact_pairs(), &report);
+    EXPECT_EQ(report.exact_pairs, 0);
+    EXPECT_TRUE(report.exact_pair_note.empty());
+    EXPECT_GT(report.iterations, 0);
+}
+
+TEST(ExactPairs, ARefusedOrFailingFactorisationLeavesThePairToCgAndSaysWhy) {
+    const Mesh m = wavy_sheet(30);
+    const Spectrum spectrum = spectrum_of(m);
+    const TransferFunction notch = design_second_order({630, 1260, 1, 0.01, 1.1});
+    const Points exact = spectral_filter(spectrum, m.points, notch);
+    for (bool fails : {false, true}) {
+        SCOPED_TRACE(fails ? "factorisation fails" : "too big");
+        FilterOptions options;
+        options.complex_factorization = [fails](const SparseMatrix&) { return std::make_unique<RefusedFactor>(fails); };
+        FilterReport report;
+        const Points out = apply_filter(m.points, m.triangles, notch, options, &report);
+        EXPECT_EQ(report.exact_pairs, 0);
+        EXPECT_GT(report.iterations, 0);
+        EXPECT_NE(report.exact_pair_note.find(fails ? "the factor library failed" : "MiB are available"), std::string::npos)
+            << report.exact_pair_note;
+        EXPECT_NE(solver_used(report).find(report.exact_pair_note), std::string::npos);
+        EXPECT_LE(area_weighted_rms(out - exact, spectrum.mass), 1e-7 * bbox_diagonal(m.points));
+    }
+}
+
+TEST(ExactPairs, AFilterCacheKeepsTheComplexFactorForTheSameFilter) {
+    if (!exact_pair_factorization()) GTEST_SKIP() << "configured with GEOFILTER_EXACT_PAIRS=OFF";
+    const Mesh m = wavy_sheet(30);
+    FilterCache cache;
+    const TransferFunction notch = design_second_order({630, 1260, 1, 0.01, 1.1});
+    FilterReport first, second;
+    const Points a = apply_filter(m.points, m.triangles, notch, with_exact_pairs(1e-7), &first, &cache);
+    // Another tolerance: not the held result, but the held factor of the same pair.
+    const Points b = apply_filter(m.points, m.triangles, notch, with_exact_pairs(1e-9), &second, &cache);
+    EXPECT_EQ(first.exact_pairs, 1);
+    EXPECT_EQ(second.exact_pairs, 1);
+    EXPECT_GT(first.seconds_factorization, 0);
+    EXPECT_EQ(second.seconds_factorization, 0);
+    EXPECT_LE((a - b).cwiseAbs().maxCoeff(), 1e-6 * bbox_diagonal(m.points));
+}
