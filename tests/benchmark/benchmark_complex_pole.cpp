@@ -1,14 +1,16 @@
-// Issue 13's untried option, measured: an exact solve of a complex pole pair by a
-// complex-symmetric LDL^T factorisation of Kt - rI (MUMPS, ZMUMPS with SYM = 2), against
-// what the factored solver does today (CG on (Kt - r)(Kt - conj r) preconditioned with the
-// Cholesky factor of Kt + |r| I). Since 1 / ((s - r)(s - conj r)) = Im(1 / (s - r)) / Im r,
-// one complex factorisation and one complex solve replace the CG for each pair.
+// The experiment behind the factored solver's exact pair solves (filter_geofilter/exact_pairs):
+// every complex pole pair solved by a complex-symmetric LDL^T of Kt - rI (MUMPS's parallel
+// ZMUMPS with SYM = 2, AMD or METIS ordering) against every pair by CG on (Kt - r)(Kt - conj r)
+// preconditioned with the Cholesky factor of Kt + |r| I (apply_filter without a
+// complex_factorization). Since 1 / ((s - r)(s - conj r)) = Im(1 / (s - r)) / Im r, one complex
+// factorisation and one complex solve replace the CG for each pair. The solver itself chooses
+// per pair by predicted cost; this measures both choices on every pair.
 //
 //   geofilter_complex_pole_benchmark MESH FILTER METHOD
 //     MESH: torus (the 1M perturbed torus of the solver benchmark) or a mesh file and a
 //           number of subdivisions, "man.off:3"; normalised to unit bounding-box diagonal
 //     FILTER: lowpass | exaggeration | notch | butterworth8
-//     METHOD: today (apply_filter, the factored solver) | ldlt-amd | ldlt-metis
+//     METHOD: today (apply_filter, every pair by CG) | ldlt-amd | ldlt-metis
 // Prints one table row (times, factor size, peak memory of this process). One case per
 // process, so that the peak is the case's own: scripts/benchmark-complex-pole.sh runs them.
 #include "core/butterworth.h"
