@@ -115,22 +115,50 @@ public:
 
 private:
     // Whether factorising Kt - r I is predicted to cost less than CG preconditioned at `shift`.
+    // Never when the real factor CG needs is held already or needed anyway by another pole
+    // group at the same shift (a real pole, or another pair: a Butterworth's poles all lie on
+    // the circle |r| = sc). Measured on the 1M torus, an order-8 Butterworth with its sharpest
+    // pair exact and the rest on CG took 38.9 s and 3.1 GB (both factors held at once) against
+    // 30.2 s and 1.5 GB with every pair on CG: the worst-case iteration count below
+    // overestimates the torus's by about 3x, and the shared factor is cheap there.
+    bool exact_pair_pays(std::complex<double> r, double shift) const {
+        if (!problem_.options.complex_factorization || !state_.exact_pair_note.empty()) return false;
+        if (state_.complex && state_.complex->holds(r)) return true;
+        if (state_.cholesky.has_factor() && state_.cholesky.shift() == shift) return false;
+        if (factor_needed_elsewhere(r, shift)) return false;
+        return cg_pair_cost(r, shift) > complex_factorization_cost();
+    }
+
+    bool factor_needed_elsewhere(std::complex<double> r, double shift) const {
+        const auto same = [](double a, double b) { return std::abs(a - b) <= 1e-9 * std::max(a, b); };
+        for (const std::complex<double>& p : problem_.g.poles)
+            if (p.imag() >= 0 && p != r && same(p.imag() == 0 ? -p.real() : std::abs(p), shift)) return true;
+        return false;
+    }
+
     // Costs in units of one real factorisation of Kt + c I unless measured on this state:
     // measured on the 416k-vertex scan and on the benchmark's 1M meshes, one CG iteration on a
     // pair costs ~0.14 of it, a complex LDL^T 1.6-3.0 (3 taken), and CG needs ~6.5
     // sqrt(high / low) iterations at the default tolerance (11, 42 and 44 measured for the
     // README's lowpass, notch and exaggeration, sqrt = 1.7, 6.5, 7.7). So the lowpass stays
     // on CG and the sharp resonances go to the exact solve.
-    bool exact_pair_pays(std::complex<double> r, double shift) const {
-        if (!problem_.options.complex_factorization || !state_.exact_pair_note.empty()) return false;
-        if (state_.complex && state_.complex->holds(r)) return true;
-        constexpr double complex_per_real = 3.0, iteration_per_real = 0.14;
-        const double measured_real = state_.seconds_per_factorization, measured_complex = state_.seconds_per_complex_factorization;
-        const double factorization = measured_real > 0      ? measured_real
-                                     : measured_complex > 0 ? measured_complex / complex_per_real
-                                                            : 1.0;
-        const double complex_factorization = measured_complex > 0 ? measured_complex : complex_per_real * factorization;
-        const double iteration = measured_real > 0 && state_.seconds_per_pair_iteration > 0
+    static constexpr double complex_per_real = 3.0, iteration_per_real = 0.14;
+
+    double real_factorization_cost() const {
+        if (state_.seconds_per_factorization > 0) return state_.seconds_per_factorization;
+        if (state_.seconds_per_complex_factorization > 0) return state_.seconds_per_complex_factorization / complex_per_real;
+        return 1.0;
+    }
+
+    double complex_factorization_cost() const {
+        return state_.seconds_per_complex_factorization > 0 ? state_.seconds_per_complex_factorization
+                                                            : complex_per_real * real_factorization_cost();
+    }
+
+    // A new real factorisation and the predicted CG iterations.
+    double cg_pair_cost(std::complex<double> r, double shift) const {
+        const double factorization = real_factorization_cost();
+        const double iteration = state_.seconds_per_factorization > 0 && state_.seconds_per_pair_iteration > 0
                                      ? state_.seconds_per_pair_iteration
                                      : iteration_per_real * factorization;
         const PreconditionedRange range = pair_preconditioner_range(r, shift);
@@ -138,8 +166,7 @@ private:
         const double iterations = state_.last_pair_iterations > 0
                                       ? state_.last_pair_iterations * std::sqrt(condition / state_.last_pair_condition)
                                       : 6.5 * std::sqrt(condition);
-        const bool held = state_.cholesky.has_factor() && state_.cholesky.shift() == shift;
-        return (held ? 0.0 : factorization) + iterations * iteration > complex_factorization;
+        return factorization + iterations * iteration;
     }
 
     // Im((Kt - r)^-1 y) / Im r, which is ((Kt - r)(Kt - conj r))^-1 y, by a factorisation of
