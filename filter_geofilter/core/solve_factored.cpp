@@ -114,19 +114,24 @@ public:
     }
 
 private:
-    // Whether factorising Kt - r I is predicted to cost less than CG preconditioned at `shift`.
-    // Never when the real factor CG needs is held already or needed anyway by another pole
-    // group at the same shift (a real pole, or another pair: a Butterworth's poles all lie on
-    // the circle |r| = sc). Measured on the 1M torus, an order-8 Butterworth with its sharpest
-    // pair exact and the rest on CG took 38.9 s and 3.1 GB (both factors held at once) against
-    // 30.2 s and 1.5 GB with every pair on CG: the worst-case iteration count below
-    // overestimates the torus's by about 3x, and the shared factor is cheap there.
-    bool exact_pair_pays(std::complex<double> r, double shift) const {
-        if (!problem_.options.complex_factorization || !state_.exact_pair_note.empty()) return false;
+    // Whether factorising Kt - r I is predicted to cost less than CG preconditioned at `shift`
+    // (with the real factor's cost only if it is not held already). Never when another pole
+    // group needs the real factor at the same shift anyway (a real pole, or another pair: a
+    // Butterworth's poles all lie on the circle |r| = sc). Measured on the 1M torus, an
+    // order-8 Butterworth with its sharpest pair exact and the rest on CG took 38.9 s and
+    // 3.1 GB (both factors held at once) against 30.2 s and 1.5 GB with every pair on CG: the
+    // worst-case iteration count below overestimates the torus's by about 3x, and the shared
+    // factor is cheap there. A state on which the exact solve failed keeps to CG (and says so).
+    bool exact_pair_pays(std::complex<double> r, double shift) {
+        if (!problem_.options.complex_factorization) return false;
+        if (!state_.exact_pair_note.empty()) {
+            report_.exact_pair_note = state_.exact_pair_note;
+            return false;
+        }
         if (state_.complex && state_.complex->holds(r)) return true;
-        if (state_.cholesky.has_factor() && state_.cholesky.shift() == shift) return false;
         if (factor_needed_elsewhere(r, shift)) return false;
-        return cg_pair_cost(r, shift) > complex_factorization_cost();
+        const bool held = state_.cholesky.has_factor() && state_.cholesky.shift() == shift;
+        return cg_pair_cost(r, shift, !held) > complex_factorization_cost();
     }
 
     bool factor_needed_elsewhere(std::complex<double> r, double shift) const {
@@ -155,8 +160,8 @@ private:
                                                             : complex_per_real * real_factorization_cost();
     }
 
-    // A new real factorisation and the predicted CG iterations.
-    double cg_pair_cost(std::complex<double> r, double shift) const {
+    // The predicted CG iterations, and a real factorisation if `with_factorization`.
+    double cg_pair_cost(std::complex<double> r, double shift, bool with_factorization) const {
         const double factorization = real_factorization_cost();
         const double iteration = state_.seconds_per_factorization > 0 && state_.seconds_per_pair_iteration > 0
                                      ? state_.seconds_per_pair_iteration
@@ -166,7 +171,7 @@ private:
         const double iterations = state_.last_pair_iterations > 0
                                       ? state_.last_pair_iterations * std::sqrt(condition / state_.last_pair_condition)
                                       : 6.5 * std::sqrt(condition);
-        return factorization + iterations * iteration;
+        return (with_factorization ? factorization : 0.0) + iterations * iteration;
     }
 
     // Im((Kt - r)^-1 y) / Im r, which is ((Kt - r)(Kt - conj r))^-1 y, by a factorisation of

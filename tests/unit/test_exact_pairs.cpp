@@ -110,8 +110,13 @@ TEST(ExactPairs, ARefusedOrFailingFactorisationLeavesThePairToCgAndSaysWhy) {
         SCOPED_TRACE(fails ? "factorisation fails" : "too big");
         FilterOptions options;
         options.complex_factorization = [fails](const SparseMatrix&) { return std::make_unique<RefusedFactor>(fails); };
-        FilterReport report;
-        const Points out = apply_filter(m.points, m.triangles, notch, options, &report);
+        FilterReport report, again;
+        FilterCache cache;
+        const Points out = apply_filter(m.points, m.triangles, notch, options, &report, &cache);
+        // A second run on the same mesh does not try again, and still says why.
+        apply_filter(m.points, m.triangles, design_second_order({600, 1200, 1, 0.01, 1.1}), options, &again, &cache);
+        EXPECT_EQ(again.exact_pairs, 0);
+        EXPECT_EQ(again.exact_pair_note, report.exact_pair_note);
         EXPECT_EQ(report.exact_pairs, 0);
         EXPECT_GT(report.iterations, 0);
         EXPECT_NE(report.exact_pair_note.find(fails ? "the factor library failed" : "MiB are available"), std::string::npos)
