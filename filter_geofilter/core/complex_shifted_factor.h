@@ -1,7 +1,7 @@
 // The factorisation a complex pole pair can be solved exactly with: Kt - r I for a complex r
 // is complex symmetric (Kt is real symmetric), not Hermitian, so CHOLMOD, the core's only
-// direct solver, cannot factorise it. A library outside the core provides it (MUMPS's
-// complex LDL^T: filter_geofilter/mumps); without one, every pair is solved by CG.
+// direct solver, cannot factorise it. Libraries outside the core provide it (MUMPS's complex
+// LDL^T: exact_pairs/ sequential, mpi/ distributed); without one, every pair is solved by CG.
 #pragma once
 
 #include "types.h"

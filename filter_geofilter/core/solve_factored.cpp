@@ -4,6 +4,7 @@
 // they commute and can be applied in any order, and every shifted matrix Kt + c I has
 // the same sparsity: CHOLMOD's symbolic analysis is done once per mesh.
 #include "cascade.h"
+#include "exact_pair.h"
 #include "pcg.h"
 #include "shifted_cholesky.h"
 #include "solvers.h"
@@ -77,7 +78,9 @@ public:
     Eigen::MatrixXd conjugate_pair(std::complex<double> r, const Eigen::MatrixXd& y, double allowed_error,
                                    double progress) override {
         const double shift = preconditioner_shift(r);
-        if (exact_pair_pays(r, shift))
+        if (!state_.exact_pair_note.empty())
+            report_.exact_pair_note = state_.exact_pair_note;  // why every pair on this state is on CG
+        else if (exact_pair_pays(r, shift))
             if (std::optional<Eigen::MatrixXd> x = exact_pair(r, y, allowed_error, progress)) return *x;
         const double twice_re = 2 * r.real(), modulus2 = std::norm(r);
         factorize(shift, progress);
@@ -114,71 +117,36 @@ public:
     }
 
 private:
-    // Whether factorising Kt - r I is predicted to cost less than CG preconditioned at `shift`
-    // (with the real factor's cost only if it is not held already). Never when another pole
-    // group needs the real factor at the same shift anyway (a real pole, or another pair: a
-    // Butterworth's poles all lie on the circle |r| = sc). Measured on the 1M torus, an
-    // order-8 Butterworth with its sharpest pair exact and the rest on CG took 38.9 s and
-    // 3.1 GB (both factors held at once) against 30.2 s and 1.5 GB with every pair on CG: the
-    // worst-case iteration count below overestimates the torus's by about 3x, and the shared
-    // factor is cheap there. A state on which the exact solve failed keeps to CG (and says so).
-    bool exact_pair_pays(std::complex<double> r, double shift) {
+    // The shared rule (exact_pair.h), with this state's own timings once it has them.
+    bool exact_pair_pays(std::complex<double> r, double shift) const {
         if (!problem_.options.complex_factorization) return false;
-        if (!state_.exact_pair_note.empty()) {
-            report_.exact_pair_note = state_.exact_pair_note;
-            return false;
-        }
         if (state_.complex && state_.complex->holds(r)) return true;
-        if (factor_needed_elsewhere(r, shift)) return false;
         const bool held = state_.cholesky.has_factor() && state_.cholesky.shift() == shift;
-        return cg_pair_cost(r, shift, !held) > complex_factorization_cost();
+        return detail::exact_pair_pays(problem_.g, r, shift, held, measured_costs());
     }
 
-    bool factor_needed_elsewhere(std::complex<double> r, double shift) const {
-        const auto same = [](double a, double b) { return std::abs(a - b) <= 1e-9 * std::max(a, b); };
-        for (const std::complex<double>& p : problem_.g.poles)
-            if (p.imag() >= 0 && p != r && same(p.imag() == 0 ? -p.real() : std::abs(p), shift)) return true;
-        return false;
+    // The default ratios (exact_pair.h) in seconds, from whichever factorisation this state
+    // has timed.
+    PairSolveCosts measured_costs() const {
+        PairSolveCosts costs;
+        const double ratio = costs.complex_factorization;
+        if (state_.seconds_per_factorization > 0) costs.real_factorization = state_.seconds_per_factorization;
+        else if (state_.seconds_per_complex_factorization > 0)
+            costs.real_factorization = state_.seconds_per_complex_factorization / ratio;
+        costs.complex_factorization = state_.seconds_per_complex_factorization > 0
+                                          ? state_.seconds_per_complex_factorization
+                                          : ratio * costs.real_factorization;
+        costs.pair_iteration = state_.seconds_per_factorization > 0 && state_.seconds_per_pair_iteration > 0
+                                   ? state_.seconds_per_pair_iteration
+                                   : costs.pair_iteration * costs.real_factorization;
+        costs.last_pair_iterations = state_.last_pair_iterations;
+        costs.last_pair_condition = state_.last_pair_condition;
+        return costs;
     }
 
-    // Costs in units of one real factorisation of Kt + c I unless measured on this state:
-    // measured on the 416k-vertex scan and on the benchmark's 1M meshes, one CG iteration on a
-    // pair costs ~0.14 of it, a complex LDL^T 1.6-3.0 (3 taken), and CG needs ~6.5
-    // sqrt(high / low) iterations at the default tolerance (11, 42 and 44 measured for the
-    // README's lowpass, notch and exaggeration, sqrt = 1.7, 6.5, 7.7). So the lowpass stays
-    // on CG and the sharp resonances go to the exact solve.
-    static constexpr double complex_per_real = 3.0, iteration_per_real = 0.14;
-
-    double real_factorization_cost() const {
-        if (state_.seconds_per_factorization > 0) return state_.seconds_per_factorization;
-        if (state_.seconds_per_complex_factorization > 0) return state_.seconds_per_complex_factorization / complex_per_real;
-        return 1.0;
-    }
-
-    double complex_factorization_cost() const {
-        return state_.seconds_per_complex_factorization > 0 ? state_.seconds_per_complex_factorization
-                                                            : complex_per_real * real_factorization_cost();
-    }
-
-    // The predicted CG iterations, and a real factorisation if `with_factorization`.
-    double cg_pair_cost(std::complex<double> r, double shift, bool with_factorization) const {
-        const double factorization = real_factorization_cost();
-        const double iteration = state_.seconds_per_factorization > 0 && state_.seconds_per_pair_iteration > 0
-                                     ? state_.seconds_per_pair_iteration
-                                     : iteration_per_real * factorization;
-        const PreconditionedRange range = pair_preconditioner_range(r, shift);
-        const double condition = range.high / range.low;
-        const double iterations = state_.last_pair_iterations > 0
-                                      ? state_.last_pair_iterations * std::sqrt(condition / state_.last_pair_condition)
-                                      : 6.5 * std::sqrt(condition);
-        return (with_factorization ? factorization : 0.0) + iterations * iteration;
-    }
-
-    // Im((Kt - r)^-1 y) / Im r, which is ((Kt - r)(Kt - conj r))^-1 y, by a factorisation of
-    // Kt - r I with iterative refinement. With rho = y - (Kt - r) z the residual, the error
-    // in z is at most |rho| / d (d = min over s >= 0 of |s - r|, the spectrum of Kt being real
-    // and non-negative), and in the pair at most that over Im r: a bound, as CG's. Empty (and
-    // a note in the report) when the factorisation is refused or fails: CG then solves it.
+    // The pair by a factorisation of Kt - r I (solve_pair_exactly). Empty (and a note in the
+    // report) when the factorisation is refused or fails, or its bound is not met: CG then
+    // solves it.
     std::optional<Eigen::MatrixXd> exact_pair(std::complex<double> r, const Eigen::MatrixXd& y, double allowed_error,
                                               double progress) {
         // Not tried again on this state; the factor's memory goes back before CG needs its own.
@@ -216,28 +184,16 @@ private:
             report_.seconds_factorization += state_.seconds_per_complex_factorization;
         }
         const auto t = std::chrono::steady_clock::now();
-        const double bound_per_residual = 1 / (std::sqrt(pair_operator_lower_bound(r)) * std::abs(r.imag()));
         const SparseMatrix& kt = state_.kt;
         try {
-            Eigen::MatrixXcd z = factor.solve(y.cast<std::complex<double>>());
-            for (int refinement = 0;; ++refinement) {
-                const Eigen::MatrixXd z_re = z.real(), z_im = z.imag();
-                Eigen::MatrixXcd rho(y.rows(), y.cols());
-                rho.real() = y - kt * z_re + r.real() * z_re - r.imag() * z_im;
-                rho.imag() = r.real() * z_im + r.imag() * z_re - kt * z_im;
-                const double residual = rho.norm();
-                report_.relative_residual = std::max(report_.relative_residual, residual / std::max(y.norm(), 1e-300));
-                if (residual * bound_per_residual <= allowed_error) break;
-                if (refinement == 3)
-                    return give_up("its error bound stayed " +
-                                   format_number(residual * bound_per_residual / allowed_error, 3) +
-                                   " times what the tolerance allows");
-                z += factor.solve(rho);
-            }
+            const ExactPairSolution solved = solve_pair_exactly(
+                factor, r, y, allowed_error, [&](const Eigen::MatrixXd& in, Eigen::MatrixXd& out) { out = kt * in; },
+                [](const Eigen::MatrixXd& m) { return m.norm(); });
+            report_.relative_residual = std::max(report_.relative_residual, solved.relative_residual);
             report_.seconds_solve += seconds_since(t);
             ++report_.exact_pairs;
             report_.exact_pair_method = factor.name();
-            return Eigen::MatrixXd(z.imag() / r.imag());
+            return solved.x;
         } catch (const std::exception& e) {
             return give_up(e.what());
         }

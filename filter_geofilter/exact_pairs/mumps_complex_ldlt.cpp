@@ -1,5 +1,7 @@
 #include "mumps_complex_ldlt.h"
 
+#include "mumps_status.h"
+
 #include <zmumps_c.h>
 
 #include <cmath>
@@ -69,17 +71,15 @@ public:
         if (holds(r)) return;
         factored_ = false;
         for (size_t k = 0; k < diagonal_.size(); ++k) values_[diagonal_[k]] = unshifted_diagonal_[k] - r;
-        // Too little workspace for the pivoting the analysis did not foresee (INFO(1) = -8,
-        // -9): more room, a few times.
         for (int attempt = 0;; ++attempt) {
             id_.job = 2;
             zmumps_c(&id_);
             const int info = id_.infog[0];
-            if ((info == -8 || info == -9) && attempt < 3) {
-                icntl(14) = 2 * std::max<int>(icntl(14), 20);
+            if (mumps_needs_more_workspace(info) && attempt < 3) {
+                icntl(14) = mumps_larger_workspace(icntl(14));
                 continue;
             }
-            check(info, "factorisation");
+            check_mumps(info, id_.infog[1], "factorisation");
             break;
         }
         shift_ = r;
@@ -109,16 +109,7 @@ private:
     void run(int job, const char* what) {
         id_.job = job;
         zmumps_c(&id_);
-        check(id_.infog[0], what);
-    }
-
-    void check(int info, const char* what) const {
-        if (info >= 0) return;
-        std::string reason;
-        if (info == -13) reason = " (out of memory)";
-        else if (info == -10) reason = " (numerically singular)";
-        throw Error(std::string("the complex LDL^T (MUMPS) failed in its ") + what + reason + ": INFOG(1) = " +
-                    std::to_string(info) + ", INFOG(2) = " + std::to_string(id_.infog[1]));
+        check_mumps(id_.infog[0], id_.infog[1], what);
     }
 
     ZMUMPS_STRUC_C id_{};

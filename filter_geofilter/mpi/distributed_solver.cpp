@@ -1,6 +1,9 @@
 #include "distributed_solver.h"
 
+#include "distributed_complex_ldlt.h"
+
 #include "core/cascade.h"
+#include "core/exact_pair.h"
 #include "core/solvers.h"
 
 #include <petscksp.h>
@@ -13,6 +16,7 @@
 #include <cmath>
 #include <fstream>
 #include <numeric>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -335,9 +339,17 @@ public:
     // As the core's: CG on (Kt - r)(Kt - conj r) preconditioned with P = (Kt + |r|)^2, where
     // low P <= A and A >= m I make |x - A^-1 y|^2 <= r'P^-1 r / (low m) a bound. With an
     // inexact (multigrid) P that bound does not hold: the true residual's |r| / m does.
+    // Or exactly, by parallel MUMPS's complex LDL^T of Kt - r I, where the core's rule
+    // (exact_pair.h, at its default cost ratios: every rank must decide alike) says it pays.
     Eigen::MatrixXd conjugate_pair(std::complex<double> r, const Eigen::MatrixXd& y, double allowed_error,
                                    double) override {
         const double twice_re = 2 * r.real(), modulus2 = std::norm(r), shift = std::abs(r);
+        if (header_.pole_solver == PoleSolver::Direct) {
+            if (!exact_pair_note_.empty()) report_.exact_pair_note = exact_pair_note_;
+            else if ((complex_ && complex_->holds(r)) ||
+                     detail::exact_pair_pays(header_.g, r, shift, shift_ == shift, detail::PairSolveCosts{}))
+                if (std::optional<Eigen::MatrixXd> x = exact_pair(r, y, allowed_error)) return *x;
+        }
         factorize(shift);
         const auto t = std::chrono::steady_clock::now();
         const BlockOperator quadratic = [&](const Eigen::MatrixXd& in, Eigen::MatrixXd& out) {
@@ -360,7 +372,59 @@ public:
     }
 
 private:
+    // Empty (and a note for the log) when MUMPS fails or a rank lacks the memory: CG then
+    // solves this pair and every later one. All of it collective, so every rank agrees.
+    std::optional<Eigen::MatrixXd> exact_pair(std::complex<double> r, const Eigen::MatrixXd& y, double allowed_error) {
+        const auto give_up = [&](const std::string& why) {
+            complex_.reset();
+            exact_pair_note_ = "complex pole pairs by CG: the exact solve was not used (" + why + ")";
+            report_.exact_pair_note = exact_pair_note_;
+            return std::nullopt;
+        };
+        try {
+            const auto t = std::chrono::steady_clock::now();
+            if (!complex_) complex_ = distributed_complex_ldlt(comm_, shifted_, applied_shift_);
+            if (!complex_->holds(r)) {
+                if (const std::string shortfall = memory_shortfall(complex_->estimated_factorization_bytes());
+                    !shortfall.empty())
+                    return give_up(shortfall);
+                complex_->factorize(r);
+            }
+            report_.seconds_factorization += seconds_since(t);
+            const auto t_solve = std::chrono::steady_clock::now();
+            const detail::ExactPairSolution solved = detail::solve_pair_exactly(
+                *complex_, r, y, allowed_error, [&](const Eigen::MatrixXd& in, Eigen::MatrixXd& out) { out = kt_times(in); },
+                [&](const Eigen::MatrixXd& local) { return global_norm(local); });
+            report_.relative_residual = std::max(report_.relative_residual, solved.relative_residual);
+            report_.seconds_solve += seconds_since(t_solve);
+            ++report_.exact_pairs;
+            report_.exact_pair_method = complex_->name();
+            return solved.x;
+        } catch (const std::exception& e) {
+            return give_up(e.what());
+        }
+    }
+
+    // "" when every rank's share of the factorisation (MUMPS's estimate) fits in its share of
+    // its node's available memory, else why not. Collective.
+    std::string memory_shortfall(double needed_here) const {
+        MPI_Comm node;
+        MPI_Comm_split_type(comm_, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
+        int ranks_on_node = 1;
+        MPI_Comm_size(node, &ranks_on_node);
+        MPI_Comm_free(&node);
+        const double available = detail::available_memory_bytes();
+        const double share = available > 0 ? available / ranks_on_node : 0;
+        double worst[2] = {share > 0 ? needed_here / share : 0, 0};
+        worst[1] = needed_here;
+        MPI_Allreduce(MPI_IN_PLACE, worst, 2, MPI_DOUBLE, MPI_MAX, comm_);
+        if (worst[0] <= 1) return "";
+        return "a rank would need " + format_number(worst[1] / (1 << 20), 3) + " MiB, " +
+               format_number(100 * worst[0], 3) + " % of its share of the available memory";
+    }
+
     void release() {
+        complex_.reset();
         KSPDestroy(&ksp_);
         MatDestroy(&shifted_);
         VecDestroy(&in_);
@@ -530,6 +594,8 @@ private:
     KSP ksp_ = nullptr;
     Vec in_ = nullptr, out_ = nullptr;
     double shift_ = NAN;
+    std::unique_ptr<ComplexShiftedFactor> complex_;
+    std::string exact_pair_note_;  // why pairs went back to CG, once the exact solve failed
 };
 
 // Collective: every rank's part of one solve. Rank 0 brings the problem and gets the result

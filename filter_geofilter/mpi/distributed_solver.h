@@ -1,7 +1,8 @@
 // The core's factored solver on PETSc matrices distributed over MPI ranks: the same
 // algorithm (detail::apply_factored_transfer: real poles by a direct Cholesky solve, a complex
-// pair by CG preconditioned with that factor, stopping on the core's error bound), with
-// Kt = M^-1/2 K M^-1/2 partitioned by PETSc's MatPartitioning and factorised by MUMPS.
+// pair by CG preconditioned with that factor, stopping on the core's error bound, or exactly
+// by a complex LDL^T where the core's rule says so), with Kt = M^-1/2 K M^-1/2 partitioned by
+// PETSc's MatPartitioning and factorised by MUMPS.
 //
 // Rank 0 runs the command line; the other ranks wait in serve_solves() until it calls
 // solve_on_all_ranks() (from apply_filter, through FilterOptions::external_solver) or

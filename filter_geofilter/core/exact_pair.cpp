@@ -1,0 +1,56 @@
+#include "exact_pair.h"
+
+#include "cascade.h"
+
+#include <cmath>
+
+namespace geofilter::detail {
+
+namespace {
+
+bool factor_needed_elsewhere(const TransferFunction& g, std::complex<double> r, double shift) {
+    const auto same = [](double a, double b) { return std::abs(a - b) <= 1e-9 * std::max(a, b); };
+    for (const std::complex<double>& p : g.poles)
+        if (p.imag() >= 0 && p != r && same(p.imag() == 0 ? -p.real() : std::abs(p), shift)) return true;
+    return false;
+}
+
+} // namespace
+
+bool exact_pair_pays(const TransferFunction& g, std::complex<double> r, double shift, bool real_factor_held,
+                     const PairSolveCosts& costs) {
+    if (factor_needed_elsewhere(g, r, shift)) return false;
+    const PreconditionedRange range = pair_preconditioner_range(r, shift);
+    const double condition = range.high / range.low;
+    const double iterations = costs.last_pair_iterations > 0
+                                  ? costs.last_pair_iterations * std::sqrt(condition / costs.last_pair_condition)
+                                  : 6.5 * std::sqrt(condition);
+    const double cg = (real_factor_held ? 0.0 : costs.real_factorization) + iterations * costs.pair_iteration;
+    return cg > costs.complex_factorization;
+}
+
+ExactPairSolution solve_pair_exactly(ComplexShiftedFactor& factor, std::complex<double> r, const Eigen::MatrixXd& y,
+                                     double allowed_error, const BlockOperator& kt_times, const BlockNorm& norm) {
+    const double bound_per_residual = 1 / (std::sqrt(pair_operator_lower_bound(r)) * std::abs(r.imag()));
+    const double y_norm = std::max(norm(y), 1e-300);
+    Eigen::MatrixXcd z = factor.solve(y.cast<std::complex<double>>());
+    Eigen::MatrixXd kt_re, kt_im;
+    for (int refinement = 0;; ++refinement) {
+        const Eigen::MatrixXd z_re = z.real(), z_im = z.imag();
+        kt_times(z_re, kt_re);
+        kt_times(z_im, kt_im);
+        Eigen::MatrixXcd rho(y.rows(), y.cols());
+        rho.real() = y - kt_re + r.real() * z_re - r.imag() * z_im;
+        rho.imag() = r.real() * z_im + r.imag() * z_re - kt_im;
+        Eigen::MatrixXd parts(y.rows(), 2 * y.cols());
+        parts << rho.real(), rho.imag();
+        const double residual = norm(parts);
+        if (residual * bound_per_residual <= allowed_error) return {Eigen::MatrixXd(z.imag() / r.imag()), residual / y_norm};
+        if (refinement == 3)
+            throw Error("its error bound stayed " + format_number(residual * bound_per_residual / allowed_error, 3) +
+                        " times what the tolerance allows");
+        z += factor.solve(rho);
+    }
+}
+
+} // namespace geofilter::detail
