@@ -13,6 +13,12 @@
 
 namespace geofilter {
 
+// What a factorisation held, in the library's own counts (for logs); zero where unknown.
+struct ComplexFactorSize {
+    double entries = 0;
+    double megabytes_largest_process = 0, megabytes_total = 0;
+};
+
 class ComplexShiftedFactor {
 public:
     virtual ~ComplexShiftedFactor() = default;
@@ -25,6 +31,7 @@ public:
     virtual bool holds(std::complex<double> r) const = 0;
     // (Kt - r I)^-1 b with the current factor.
     virtual Eigen::MatrixXcd solve(const Eigen::MatrixXcd& b) = 0;
+    virtual ComplexFactorSize factor_size() const { return {}; }
 };
 
 // Analyses the pattern of `kt` (which must outlive the factor) and returns a factor holder;

@@ -5,14 +5,17 @@
 
 namespace geofilter::detail {
 
-ShiftedCholesky::ShiftedCholesky(const SparseMatrix& kt) : kt_(kt) {
+void ShiftedCholesky::analyse() {
+    if (analysed_) return;
     use_amd_ordering(llt_.cholmod());
     llt_.analyzePattern(kt_);
     if (llt_.cholmod().status == CHOLMOD_OUT_OF_MEMORY) throw std::bad_alloc();
+    analysed_ = true;
 }
 
 void ShiftedCholesky::factorize(double shift) {
     if (shift == shift_) return;
+    analyse();
     shift_ = NAN;  // a failed factorisation leaves no usable factor behind
     llt_.setShift(shift);
     llt_.factorize(kt_);

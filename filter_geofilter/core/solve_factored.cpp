@@ -205,10 +205,10 @@ private:
                                   std::unique_ptr<FactorState>& local) {
         std::unique_ptr<FactorState>& slot = problem.factor_slot ? *problem.factor_slot : local;
         if (!slot) {
-            report_progress(problem.options, 0.05, "analysing the sparsity pattern");
+            report_progress(problem.options, 0.05, "building Kt");
             const auto t = std::chrono::steady_clock::now();
             slot = std::make_unique<FactorState>(problem.laplacian);
-            report.seconds_factorization += seconds_since(t);
+            report.seconds_assembly += seconds_since(t);
         }
         return *slot;
     }
@@ -235,6 +235,12 @@ private:
 
     void factorize(double shift, double progress) {
         if (state_.cholesky.has_factor() && state_.cholesky.shift() == shift) return;
+        if (!state_.cholesky.analysed()) {
+            report_progress(problem_.options, progress, "analysing the sparsity pattern");
+            const auto t = std::chrono::steady_clock::now();
+            state_.cholesky.analyse();
+            report_.seconds_factorization += seconds_since(t);
+        }
         report_progress(problem_.options, progress, "factorising");
         const auto t = std::chrono::steady_clock::now();
         state_.cholesky.factorize(shift);

@@ -81,6 +81,12 @@ public:
 
     bool holds(std::complex<double> r) const override { return factored_ && r == shift_; }
 
+    // INFOG(29) entries; INFOG(21), INFOG(22): MB the factorisation used on the largest rank
+    // and on all of them.
+    ComplexFactorSize factor_size() const override {
+        return {double(id_.infog[28]), double(id_.infog[20]), double(id_.infog[21])};
+    }
+
     void factorize(std::complex<double> r) override {
         if (holds(r)) return;
         factored_ = false;

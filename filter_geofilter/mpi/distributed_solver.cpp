@@ -389,6 +389,7 @@ private:
                     !shortfall.empty())
                     return give_up(shortfall);
                 complex_->factorize(r);
+                complex_size = complex_->factor_size();
             }
             report_.seconds_factorization += seconds_since(t);
             const auto t_solve = std::chrono::steady_clock::now();
@@ -583,6 +584,7 @@ private:
 public:
     double factor_entries = 0, factor_largest_mb = 0, factor_total_mb = 0;
     int workspace_retries = 0;  // factorisations redone with a larger ICNTL(14)
+    ComplexFactorSize complex_size;  // the last complex LDL^T's, if a pair was solved exactly
 
 private:
 
@@ -663,6 +665,12 @@ Eigen::MatrixXd solve_collectively(MPI_Comm comm, FactoredProblem* problem, cons
                         format_number(stages.factor_entries / double(header.vertices), 4) + " per vertex), factorisation memory " +
                         format_number(stages.factor_largest_mb, 4) + " MB on the largest rank, " +
                         format_number(stages.factor_total_mb, 4) + " MB in all";
+            if (stages.complex_size.entries > 0)
+                line += "; MUMPS complex LDL^T " + format_number(stages.complex_size.entries, 4) + " entries (" +
+                        format_number(stages.complex_size.entries / double(header.vertices), 4) +
+                        " per vertex), factorisation memory " +
+                        format_number(stages.complex_size.megabytes_largest_process, 4) + " MB on the largest rank, " +
+                        format_number(stages.complex_size.megabytes_total, 4) + " MB in all";
             if (stages.workspace_retries > 0)
                 line += " (after " + std::to_string(stages.workspace_retries) +
                         " retry with a larger workspace: MUMPS's estimate fell short, INFOG(1) = -9 or -8)";
