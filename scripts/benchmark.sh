@@ -2,7 +2,8 @@
 # The solver benchmark (not part of the test run; ~20 min here): builds, runs
 # geofilter_benchmark on ~10k, ~100k and ~1M-vertex meshes, and plots the result.
 # Writes results/benchmark/benchmark.md (the table), benchmark.dat and benchmark.png.
-# Extra arguments go to geofilter_benchmark (e.g. --pcg-seconds 60, --quick).
+# Extra arguments go to geofilter_benchmark (e.g. --pcg-seconds 60, --quick; --preview prints
+# only the preview rows, in about a minute, and writes nothing).
 set -euo pipefail
 top=$(cd "$(dirname "$0")/.." && pwd)
 build=${GEOFILTER_BUILD_DIR:-$top/build}
@@ -10,4 +11,7 @@ build=${GEOFILTER_BUILD_DIR:-$top/build}
 "$top/scripts/build.sh" >/dev/null
 "$build/tests/geofilter_benchmark" --meshes "$top/meshes" --out "$top/results/benchmark" \
     --pcg-seconds 30 --pcg-full-seconds 200 "$@"
-/usr/bin/python3 "$top/scripts/plot_benchmark.py" "$top/results/benchmark"
+case " $* " in
+*" --preview "*|*" --region "*) ;;
+*) /usr/bin/python3 "$top/scripts/plot_benchmark.py" "$top/results/benchmark" ;;
+esac

@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 namespace geofilter::detail {
 
@@ -58,6 +59,9 @@ struct FactorState {
     int last_pair_iterations = 0;           // its iterations
     double last_pair_condition = 0;         // and its preconditioned range's high / low
     double seconds_per_complex_factorization = 0;  // the last one; 0 = none yet
+    // The last run's CG pair solutions, in the order solved (kept only in a FilterCache): the
+    // next run's pairs start from them (a preview's parameter change barely moves them).
+    std::vector<Eigen::MatrixXd> pair_solutions;
     std::string exact_pair_note;    // why exact pair solves failed on this state ("" = they did not)
 };
 

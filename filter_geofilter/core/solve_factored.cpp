@@ -100,7 +100,7 @@ public:
         const ErrorBound bound = [&](const Eigen::MatrixXd&, const Eigen::ArrayXd& rz) {
             return std::sqrt(std::max(rz.sum(), 0.0) / lower);
         };
-        Eigen::MatrixXd x = Eigen::MatrixXd::Zero(y.rows(), y.cols());
+        Eigen::MatrixXd x = starting_guess(quadratic, y);
         const FilterOptions& options = problem_.options;
         const PcgOutcome outcome =
             block_pcg(quadratic, preconditioner, y, x, bound, allowed_error, options.max_iterations,
@@ -113,10 +113,35 @@ public:
             state_.last_pair_iterations = outcome.iterations;
             state_.last_pair_condition = range.high / range.low;
         }
+        if (problem_.factor_slot) {
+            if (state_.pair_solutions.size() <= pairs_solved_) state_.pair_solutions.resize(pairs_solved_ + 1);
+            state_.pair_solutions[pairs_solved_] = x;
+        }
+        ++pairs_solved_;
         return x;
     }
 
 private:
+    // Where CG on A x = y starts: zero, or, when an earlier run on this state solved a pair in
+    // the same place of its cascade, that solution x_prev scaled by the Galerkin step
+    // alpha = <x_prev, y> / <x_prev, A x_prev>, which minimises the A-norm error along x_prev:
+    // never further from the answer than zero, for two products with Kt. A preview's
+    // parameter change mostly rescales the pair's solution; what CG then has to fix is the
+    // change of shape.
+    Eigen::MatrixXd starting_guess(const BlockOperator& a, const Eigen::MatrixXd& y) const {
+        Eigen::MatrixXd x = Eigen::MatrixXd::Zero(y.rows(), y.cols());
+        if (pairs_solved_ >= state_.pair_solutions.size()) return x;
+        const Eigen::MatrixXd& previous = state_.pair_solutions[pairs_solved_];
+        if (previous.rows() != y.rows() || previous.cols() != y.cols()) return x;
+        Eigen::MatrixXd a_previous;
+        a(previous, a_previous);
+        for (Eigen::Index c = 0; c < y.cols(); ++c) {
+            const double curvature = previous.col(c).dot(a_previous.col(c));
+            if (curvature > 0) x.col(c) = (previous.col(c).dot(y.col(c)) / curvature) * previous.col(c);
+        }
+        return x;
+    }
+
     // The shared rule (exact_pair.h), with this state's own timings once it has them.
     bool exact_pair_pays(std::complex<double> r, double shift) const {
         if (!problem_.options.complex_factorization) return false;
@@ -253,6 +278,7 @@ private:
     FilterReport& report_;
     std::unique_ptr<FactorState> local_state_;
     FactorState& state_;
+    size_t pairs_solved_ = 0;  // by CG in this run
 };
 
 } // namespace

@@ -229,6 +229,8 @@ int region_rows(const std::vector<std::function<NamedMesh()>>& makers, const std
 std::string preview_row(const std::string& name, const Mesh& m) {
     struct PreviewTimes {
         double first = 0, changed = 0, again = 0;
+        double changed_factor = 0, changed_solve = 0;  // the parameter change, broken down
+        int changed_iterations = 0;
         char changed_reuse[32] = {0}, again_reuse[32] = {0};
         char failure[200] = {0};
     };
@@ -239,6 +241,9 @@ std::string preview_row(const std::string& name, const Mesh& m) {
         t.first = report.seconds_total;
         apply_filter(m.points, m.triangles, design_second_order({27.5, 55, 1, 1.1, 0}), {}, &report, &cache);
         t.changed = report.seconds_total;
+        t.changed_factor = report.seconds_factorization;
+        t.changed_solve = report.seconds_solve;
+        t.changed_iterations = report.iterations;
         std::snprintf(t.changed_reuse, sizeof t.changed_reuse, "%s", report.reused.c_str());
         apply_filter(m.points, m.triangles, design_second_order({27.5, 55, 1, 1.1, 0}), {}, &report, &cache);
         t.again = report.seconds_total;
@@ -248,8 +253,9 @@ std::string preview_row(const std::string& name, const Mesh& m) {
     row << "| " << name << " | " << m.points.rows() << " | ";
     if (times.failure[0]) row << "failed: " << times.failure << " ||||||\n";
     else
-        row << fmt(times.first, 3) << " | " << fmt(times.changed, 3) << " | " << times.changed_reuse << " | "
-            << fmt(times.again, 3) << " | " << times.again_reuse << " |\n";
+        row << fmt(times.first, 3) << " | " << fmt(times.changed, 3) << " (factor " << fmt(times.changed_factor, 3)
+            << ", solve " << fmt(times.changed_solve, 3) << ", " << times.changed_iterations << " it.) | "
+            << times.changed_reuse << " | " << fmt(times.again, 3) << " | " << times.again_reuse << " |\n";
     return row.str();
 }
 
@@ -259,7 +265,8 @@ int main(int argc, char** argv) {
     std::string out_dir = "benchmark-results", meshes_dir = "meshes";
     double pcg_budget = 60;
     double pcg_full_budget = 900;  // lowpass on meshes below 120k vertices: PCG to convergence
-    bool quick = false, region_only = false;  // --region: only the issue-11 region rows (a few minutes)
+    // --region: only the issue-11 region rows (a few minutes); --preview: only the preview rows (a minute)
+    bool quick = false, region_only = false, preview_only = false;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         if (a == "--out" && i + 1 < argc) out_dir = argv[++i];
@@ -268,9 +275,10 @@ int main(int argc, char** argv) {
         else if (a == "--pcg-full-seconds" && i + 1 < argc) pcg_full_budget = std::stod(argv[++i]);
         else if (a == "--quick") quick = true;
         else if (a == "--region") region_only = true;
+        else if (a == "--preview") preview_only = true;
         else {
             std::cerr << "usage: geofilter_benchmark [--out DIR] [--meshes DIR] [--pcg-seconds S] [--pcg-full-seconds S]"
-                         " [--quick] [--region]\n";
+                         " [--quick] [--region] [--preview]\n";
             return 2;
         }
     }
@@ -332,6 +340,17 @@ int main(int argc, char** argv) {
     table << "| mesh | vertices | filter | fast: assembly | factor | solve | total (s) | peak MiB | PCG time (s) | PCG it. | PCG / fast | floor (s) | fast / floor | Taubin x50 (s) |\n"
           << "|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     csv << "# vertices filter fast_total pcg_seconds pcg_capped floor taubin\n";
+
+    if (preview_only) {
+        for (const auto& make : makers) {
+            NamedMesh nm = make();
+            if (nm.mesh.points.rows() > FilterCache().max_vertices()) continue;
+            normalise(nm.mesh);
+            preview << preview_row(nm.name, nm.mesh);
+        }
+        std::cout << preview.str();
+        return 0;
+    }
     std::cout << table.str() << std::flush;
 
     for (const auto& make : makers) {
