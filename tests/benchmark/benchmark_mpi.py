@@ -89,7 +89,7 @@ def main():
                                         args.preset, "--pole-solver", args.pole_solver, mesh, out], env)
             m = re.search(r"peak memory per rank \(MiB\): ([\d. e+]+)", log)
             rows.append((actual, "geofilter-mpi", ranks, seconds, [float(x) for x in m.group(1).split()]))
-            factor = re.search(r"MUMPS (?:factor|complex LDL\^T) [^;]*", log)
+            factor = re.search(r"MUMPS (?:factor|complex LDL\^T) [^;\n]*", log)
             before = re.search(r"rank 0 before the distributed solve[^:]*: peak ([\d.e+]+) MiB", log)
             notes.append(f"{actual} vertices, {ranks} rank(s): {factor.group(0) if factor else 'no factor'}; "
                          f"rank 0 held {before.group(1) if before else '?'} MiB before the distributed solve")

@@ -1,0 +1,149 @@
+// What the sequential (mumps_complex_ldlt.cpp) and the distributed
+// (mpi/distributed_complex_ldlt.cpp) complex LDL^T of Kt - r I share: one triangle of Kt with
+// its diagonal to shift, the MUMPS calls, and what their status codes mean. Header-only:
+// each is compiled against its own MUMPS (sequential or parallel; the same structure, other
+// libraries), and the two never meet in one program.
+#pragma once
+
+#include "core/complex_shifted_factor.h"
+
+#include <zmumps_c.h>
+
+#include <algorithm>
+#include <complex>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace geofilter {
+
+class MumpsShiftedLdlt : public ComplexShiftedFactor {
+public:
+    ~MumpsShiftedLdlt() override { release(); }
+    MumpsShiftedLdlt(const MumpsShiftedLdlt&) = delete;
+    MumpsShiftedLdlt& operator=(const MumpsShiftedLdlt&) = delete;
+
+    bool holds(std::complex<double> r) const override { return factored_ && r == shift_; }
+
+    void factorize(std::complex<double> r) override {
+        if (holds(r)) return;
+        factored_ = false;
+        for (size_t k = 0; k < diagonal_.size(); ++k) values_[diagonal_[k]] = unshifted_diagonal_[k] - r;
+        for (int attempt = 0;; ++attempt) {
+            id_.job = 2;
+            zmumps_c(&id_);
+            // INFOG(1) = -8, -9: the workspace the analysis estimated was too small for the
+            // pivoting it did not foresee; more room (ICNTL(14), percent) lets it through. The
+            // status is global, so every process takes the same branch.
+            const int info = id_.infog[0];
+            if ((info == -8 || info == -9) && attempt < 3) {
+                icntl(14) = 2 * std::max<int>(icntl(14), 20);
+                continue;
+            }
+            check(info, "factorisation");
+            break;
+        }
+        shift_ = r;
+        factored_ = true;
+    }
+
+protected:
+    MumpsShiftedLdlt() = default;
+
+    // Entry (row, column) of Kt, 0-based, row <= column: MUMPS reads a symmetric matrix from
+    // one triangle (and sums what it is given twice).
+    void add_entry(Eigen::Index row, Eigen::Index column, double value) {
+        if (column >= std::numeric_limits<MUMPS_INT>::max())
+            throw Error("the complex LDL^T takes at most 2^31 - 2 vertices");
+        if (row == column) {
+            diagonal_.push_back(values_.size());
+            unshifted_diagonal_.push_back(value);
+        }
+        rows_.push_back(MUMPS_INT(row + 1));
+        cols_.push_back(MUMPS_INT(column + 1));
+        values_.emplace_back(value, 0.0);
+    }
+    size_t diagonal_entries() const { return diagonal_.size(); }
+
+    // MUMPS on `comm_fortran`, symmetric (not Hermitian: LDL^T with pivoting), its host
+    // working too, silent (it would otherwise print to the host's stdout: MeshLab's, Python's).
+    void initialise(MUMPS_INT comm_fortran) {
+        id_.comm_fortran = comm_fortran;
+        id_.par = 1;
+        id_.sym = 2;
+        run(-1, "initialisation");
+        initialised_ = true;
+        icntl(1) = icntl(2) = icntl(3) = -1;
+        icntl(4) = 0;
+    }
+
+    // The analysis of the entries added, of an n x n matrix: on the host alone, or each
+    // process with its own share (`distributed`, ICNTL(18) = 3).
+    void analyse(Eigen::Index n, bool distributed) {
+        id_.n = MUMPS_INT(n);
+        if (distributed) {
+            icntl(18) = 3;
+            id_.nnz_loc = MUMPS_INT8(rows_.size());
+            id_.irn_loc = rows_.data();
+            id_.jcn_loc = cols_.data();
+            id_.a_loc = reinterpret_cast<ZMUMPS_COMPLEX*>(values_.data());
+        } else {
+            id_.nnz = MUMPS_INT8(rows_.size());
+            id_.irn = rows_.data();
+            id_.jcn = cols_.data();
+            id_.a = reinterpret_cast<ZMUMPS_COMPLEX*>(values_.data());
+        }
+        try {
+            run(1, "analysis");
+        } catch (...) {
+            release();
+            throw;
+        }
+    }
+
+    // Solves for the nrhs columns at `rhs` (leading dimension n) in place, on the host.
+    void solve_in_place(std::complex<double>* rhs, int nrhs) {
+        id_.nrhs = MUMPS_INT(nrhs);
+        id_.lrhs = id_.n;
+        id_.rhs = reinterpret_cast<ZMUMPS_COMPLEX*>(rhs);
+        run(3, "solve");
+        id_.rhs = nullptr;
+    }
+
+    MUMPS_INT& icntl(int k) { return id_.icntl[k - 1]; }
+    const ZMUMPS_STRUC_C& mumps() const { return id_; }
+
+private:
+    void run(int job, const char* what) {
+        id_.job = job;
+        zmumps_c(&id_);
+        check(id_.infog[0], what);
+    }
+
+    void check(int info, const char* what) const {
+        if (info >= 0) return;
+        std::string reason;
+        if (info == -13) reason = " (out of memory)";
+        else if (info == -10) reason = " (numerically singular)";
+        throw Error(std::string("the complex LDL^T (MUMPS) failed in its ") + what + reason + ": INFOG(1) = " +
+                    std::to_string(info) + ", INFOG(2) = " + std::to_string(id_.infog[1]));
+    }
+
+    void release() {
+        if (!initialised_) return;
+        initialised_ = false;
+        id_.job = -2;
+        zmumps_c(&id_);
+    }
+
+    ZMUMPS_STRUC_C id_{};
+    bool initialised_ = false;
+    std::vector<MUMPS_INT> rows_, cols_;
+    std::vector<std::complex<double>> values_;  // MUMPS reads this process's entries from here
+    std::vector<size_t> diagonal_;              // where the diagonal sits in values_
+    std::vector<double> unshifted_diagonal_;    // Kt's diagonal, to shift from
+    std::complex<double> shift_;
+    bool factored_ = false;
+};
+
+} // namespace geofilter
