@@ -2,7 +2,8 @@
 // applies a filter again and again to the same mesh with other parameters, then once more on
 // Apply: everything that does not depend on the transfer function (mesh checks, Laplacian,
 // components, boundary split, Kt and its symbolic analysis) is built once, a factor is reused
-// while its shift still pays off, and a run with the same filter returns the held result.
+// while its shift still pays off, CG starts from the previous run's pair solutions, and a run
+// with the same filter returns the held result.
 #pragma once
 
 #include "types.h"

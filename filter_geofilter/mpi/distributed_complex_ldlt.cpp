@@ -27,15 +27,25 @@ public:
         MPI_Allgather(&mine, 1, MPI_INT, rows_per_rank_.data(), 1, MPI_INT, comm);
         first_row_.assign(size_t(ranks), 0);
         for (size_t k = 1; k < first_row_.size(); ++k) first_row_[k] = first_row_[k - 1] + rows_per_rank_[k - 1];
-        for (PetscInt row = first; row < end; ++row) {
-            PetscInt count = 0;
-            const PetscInt* columns = nullptr;
-            const PetscScalar* values = nullptr;
-            check_petsc(MatGetRow(kt, row, &count, &columns, &values), "reading Kt");
-            for (PetscInt k = 0; k < count; ++k)
-                if (columns[k] >= row) add_entry(row, columns[k], values[k] - (columns[k] == row ? applied_shift : 0.0));
-            check_petsc(MatRestoreRow(kt, row, &count, &columns, &values), "reading Kt");
+        // A failure here would be this rank's alone (memory, PETSc): every rank learns of it
+        // before the collective MUMPS calls, which would otherwise wait for this one forever.
+        std::string failure;
+        try {
+            for (PetscInt row = first; row < end; ++row) {
+                PetscInt count = 0;
+                const PetscInt* columns = nullptr;
+                const PetscScalar* values = nullptr;
+                check_petsc(MatGetRow(kt, row, &count, &columns, &values), "reading Kt");
+                for (PetscInt k = 0; k < count; ++k)
+                    if (columns[k] >= row) add_entry(row, columns[k], values[k] - (columns[k] == row ? applied_shift : 0.0));
+                check_petsc(MatRestoreRow(kt, row, &count, &columns, &values), "reading Kt");
+            }
+        } catch (const std::exception& e) {
+            failure = e.what();
         }
+        int failed = failure.empty() ? 0 : 1;
+        MPI_Allreduce(MPI_IN_PLACE, &failed, 1, MPI_INT, MPI_MAX, comm);
+        if (failed) throw Error(failure.empty() ? "another rank could not hand MUMPS its rows of Kt" : failure);
         initialise(MUMPS_INT(MPI_Comm_c2f(comm)));
         icntl(20) = 0;  // dense right-hand sides, on the host
         icntl(21) = 0;  // the solution back on the host
