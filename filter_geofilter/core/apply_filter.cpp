@@ -2,6 +2,7 @@
 #include "pcg.h"
 #include "components.h"
 #include "mesh_prep.h"
+#include "operators.h"
 #include "shifted_cholesky.h"
 #include "solvers.h"
 
@@ -170,6 +171,8 @@ bool same_function(const TransferFunction& a, const TransferFunction& b) {
            same_coefficients(a.second_order, b.second_order);
 }
 
+void place_coordinates(detail::MeshStage& st, const FilterOptions& options);
+
 std::unique_ptr<detail::MeshStage> build_mesh_stage(const Points& points, const Triangles& triangles,
                                                     const FilterOptions& options, bool keep_input) {
     auto stage = std::make_unique<detail::MeshStage>();
@@ -181,18 +184,27 @@ std::unique_ptr<detail::MeshStage> build_mesh_stage(const Points& points, const 
     st.op = options.op;
     st.fix_boundary = options.fix_boundary;
     st.mesh = prepare_mesh(points, triangles);
-    st.warnings = st.mesh.warnings;
     const PreparedMesh& mesh = st.mesh;
 
     detail::report_progress(options, 0.0, "assembling the Laplacian");
     st.laplacian = build_laplacian(options.op, mesh.points, mesh.triangles);
+    st.component = connected_components(mesh.triangles, mesh.points.rows());
+    st.components = component_count(st.component);
+    place_coordinates(st, options);
+    return stage;
+}
+
+// The part of a stage that depends on the coordinates and not on the operator: each
+// component's centroid, the centred coordinates, the size, the fixed boundary's harmonic
+// extension and what the solver filters.
+void place_coordinates(detail::MeshStage& st, const FilterOptions& options) {
+    const PreparedMesh& mesh = st.mesh;
+    st.warnings = mesh.warnings;
     // Each connected component is centred on its own area-weighted centroid. The constant
     // functions of a component are its eigenmodes at s = 0, so a filter scales the component
     // about that point: centring on one global centroid would let G0 != 1 pull the components
     // together. Centring also keeps the result independent of where the origin is, and free
     // of cancellation on meshes far from it.
-    st.component = connected_components(mesh.triangles, mesh.points.rows());
-    st.components = component_count(st.component);
     st.centroids = Eigen::MatrixXd::Zero(st.components, 3);
     Eigen::VectorXd component_area = Eigen::VectorXd::Zero(st.components);
     for (Eigen::Index i = 0; i < mesh.points.rows(); ++i) {
@@ -210,7 +222,7 @@ std::unique_ptr<detail::MeshStage> build_mesh_stage(const Points& points, const 
         st.on_boundary.clear();
         if (options.fix_boundary) st.warnings.push_back("the mesh has no open boundary: nothing to keep fixed");
         st.solved_coordinates = st.centred;
-        return stage;
+        return;
     }
     if (st.fixed_vertices == static_cast<int>(st.on_boundary.size()))
         throw Error("every vertex lies on the boundary (a strip one triangle wide): with the boundary fixed there"
@@ -221,8 +233,26 @@ std::unique_ptr<detail::MeshStage> build_mesh_stage(const Points& points, const 
     st.solved_coordinates.resize(st.centred.rows() - st.fixed_vertices, 3);
     for (size_t i = 0, k = 0; i < interior.size(); ++i)
         if (interior[i]) st.solved_coordinates.row(static_cast<Eigen::Index>(k++)) = st.centred.row(i) - st.harmonic.row(i);
-    st.interior = restrict_laplacian(st.laplacian, interior);
-    return stage;
+    if (!st.interior) st.interior = restrict_laplacian(st.laplacian, interior);
+}
+
+// A kept stage whose operator ignores the positions (the umbrella) serves other coordinates
+// on the same triangles, as Denoise's perturbed runs need: only place_coordinates is redone,
+// and the Laplacian, its factors and the last pair solutions (CG's starting points) stay.
+// False, and nothing changed, when the operator or the usable faces would differ.
+bool rebind_coordinates(detail::MeshStage& st, const Points& points, const Triangles& triangles,
+                        const FilterOptions& options) {
+    if (operator_uses_positions(st.op) || st.op != options.op || st.fix_boundary != options.fix_boundary ||
+        st.input_points.rows() != points.rows() || st.input_triangles.rows() != triangles.rows() ||
+        st.input_triangles != triangles)
+        return false;
+    PreparedMesh mesh = prepare_mesh(points, triangles);
+    if (mesh.active_vertex != st.mesh.active_vertex || mesh.triangles != st.mesh.triangles) return false;
+    st.input_points = points;
+    st.mesh = std::move(mesh);
+    st.last.reset();
+    place_coordinates(st, options);
+    return true;
 }
 
 Points apply_filter_unguarded(const Points& points, const Triangles& triangles, const TransferFunction& g,
@@ -234,7 +264,9 @@ Points apply_filter_unguarded(const Points& points, const Triangles& triangles, 
     std::unique_ptr<detail::MeshStage> local;
     std::unique_ptr<detail::MeshStage>& slot = cacheable ? cache->stage() : local;
     if (cache && !cacheable) cache->clear();
-    const bool reuse_mesh = slot && slot->built_from(points, triangles, options);
+    const bool rebound = cacheable && slot && !slot->built_from(points, triangles, options) &&
+                         rebind_coordinates(*slot, points, triangles, options);
+    const bool reuse_mesh = slot && (rebound || slot->built_from(points, triangles, options));
     if (!reuse_mesh) {
         slot.reset();  // free the old mesh's factors before building the new ones
         const double budget = options.memory_budget_bytes > 0 ? options.memory_budget_bytes : detail::available_memory_bytes();
@@ -297,7 +329,10 @@ Points apply_filter_unguarded(const Points& points, const Triangles& triangles, 
         solved = options.solver == Solver::Factored ? detail::solve_factored(problem, report)
                                                     : detail::solve_jacobi_pcg(problem, report);
     }
-    if (reuse_mesh) report.reused = had_factor && report.seconds_factorization == 0 ? "mesh and factor" : "mesh";
+    if (reuse_mesh) {
+        const char* kept = rebound ? "operator" : "mesh";
+        report.reused = std::string(kept) + (had_factor && report.seconds_factorization == 0 ? " and factor" : "");
+    }
 
     Eigen::MatrixXd filtered;
     if (st.on_boundary.empty()) {

@@ -1,5 +1,6 @@
 #include "denoise.h"
 #include "mesh_prep.h"
+#include "operators.h"
 #include "surface_measures.h"
 
 #include <chrono>
@@ -51,7 +52,9 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
     const int runs = 2 * static_cast<int>(candidates.size());
     int run = 0;
     // The runs on the input and on the perturbed input each keep their mesh for the next
-    // candidate of the same operator.
+    // candidate of the same operator. The umbrella ignores the positions, so its perturbed
+    // runs share the input's cache (FilterCache rebinds the coordinates): the same factor,
+    // and CG starting from the input run's solution, a probe step away.
     FilterCache on_input, on_perturbed;
     std::optional<Operator> cached_op;
     for (const DenoiseDesign& design : candidates) {
@@ -72,7 +75,8 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
                                             "Denoise: " + design.origin + (perturbed ? " (perturbed)" : "") + ": " + stage);
                 };
             FilterReport r;
-            Points out = apply_filter(y, triangles, design.g, o, &r, perturbed ? &on_perturbed : &on_input);
+            FilterCache& cache = perturbed && operator_uses_positions(design.op) ? on_perturbed : on_input;
+            Points out = apply_filter(y, triangles, design.g, o, &r, &cache);
             if (!perturbed) report = r;
             ++run;
             return out;

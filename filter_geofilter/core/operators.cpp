@@ -8,6 +8,8 @@
 
 namespace geofilter {
 
+bool operator_uses_positions(Operator op) { return op != Operator::Umbrella; }
+
 const char* operator_name(Operator op) {
     switch (op) {
     case Operator::Cotangent: return "cotangent";

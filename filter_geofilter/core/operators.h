@@ -19,6 +19,9 @@ enum class Operator {
 
 const char* operator_name(Operator op);
 
+// Whether K and M change with the vertex positions (not for the umbrella: connectivity only).
+bool operator_uses_positions(Operator op);
+
 // The umbrella operator of the mesh (K = D - A over its edges, M = the degrees).
 Laplacian umbrella_laplacian(const Triangles& triangles, Eigen::Index vertex_count);
 

@@ -1,6 +1,7 @@
 // Reuse between runs (MeshLab's Preview): a cached run must meet the same tolerance as a
 // fresh one, against the dense spectral filter, whatever was reused, including a factor
 // held at a shift other than |r|, whose error bound comes from pair_preconditioner_range.
+#include "core/butterworth.h"
 #include "core/cascade.h"
 #include "core/filter.h"
 #include "core/mesh_prep.h"
@@ -165,4 +166,34 @@ TEST(FilterCache, APairStartsFromThePreviousRunsSolution) {
     const Points from_noise = run(warm, after, third);
     EXPECT_LE(area_weighted_rms(from_noise - spectral_filter(spectrum, m.points, after), spectrum.mass), 1e-7 * diag);
     EXPECT_LE(third.iterations, cold_report.iterations + 1);
+}
+
+// Other coordinates on the same triangles (Denoise's perturbed runs): the umbrella operator
+// ignores positions, so the cache keeps its Laplacian and factor and redoes only what depends
+// on the coordinates; the result is the fresh run's to the tolerance. The cotangent operator
+// changes with the positions: rebuilt.
+TEST(FilterCache, TheUmbrellaOperatorServesMovedCoordinates) {
+    const Mesh& m = man_scan_patch();
+    const double diag = bbox_diagonal(m.points);
+    Points moved = m.points;
+    moved.col(2) += 0.01 * diag * moved.col(0).array().sin().matrix();
+    const TransferFunction g = design_butterworth_lowpass(0.5, 4);
+    FilterOptions umbrella;
+    umbrella.op = Operator::Umbrella;
+    FilterCache cache;
+    FilterReport first, second, fresh;
+    apply_filter(m.points, m.triangles, g, umbrella, &first, &cache);
+    const Points rebound = apply_filter(moved, m.triangles, g, umbrella, &second, &cache);
+    EXPECT_EQ(second.reused, "operator and factor");
+    EXPECT_EQ(second.seconds_factorization, 0.0);
+    const Points expected = apply_filter(moved, m.triangles, g, umbrella, &fresh);
+    EXPECT_LE((rebound - expected).rowwise().norm().maxCoeff(), 1e-6 * diag);
+    EXPECT_GT((rebound - moved).rowwise().norm().maxCoeff(), 1e-3 * diag);  // the filter did act
+
+    FilterCache cotangent_cache;
+    FilterReport cot_first, cot_second;
+    const TransferFunction lowpass = design_second_order({25, 50, 1, 1.1, 0});
+    apply_filter(m.points, m.triangles, lowpass, {}, &cot_first, &cotangent_cache);
+    apply_filter(moved, m.triangles, lowpass, {}, &cot_second, &cotangent_cache);
+    EXPECT_EQ(cot_second.reused, "");
 }
