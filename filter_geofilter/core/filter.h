@@ -87,7 +87,9 @@ struct FilterReport {
     int components = 0;            // connected components, each filtered about its own centroid
     std::vector<std::string> warnings;  // repairs made to the input, in plain words
     // What came from a FilterCache: "" (nothing), "mesh" (checks, Laplacian, analysis),
-    // "mesh and factor", or "result" (the same filter as the run before).
+    // "mesh and factor", "operator" or "operator and factor" (other coordinates on the same
+    // triangles, for an operator that ignores positions), or "result" (the same filter as the
+    // run before).
     std::string reused;
     // Set by an ExternalFactoredSolver that solved in its own way (geofilter-mpi's multigrid
     // option), so that the log does not claim a factorisation that never happened.
