@@ -264,9 +264,9 @@ Points apply_filter_unguarded(const Points& points, const Triangles& triangles, 
     std::unique_ptr<detail::MeshStage> local;
     std::unique_ptr<detail::MeshStage>& slot = cacheable ? cache->stage() : local;
     if (cache && !cacheable) cache->clear();
-    const bool rebound = cacheable && slot && !slot->built_from(points, triangles, options) &&
-                         rebind_coordinates(*slot, points, triangles, options);
-    const bool reuse_mesh = slot && (rebound || slot->built_from(points, triangles, options));
+    const bool same_mesh = slot && slot->built_from(points, triangles, options);
+    const bool rebound = !same_mesh && cacheable && slot && rebind_coordinates(*slot, points, triangles, options);
+    const bool reuse_mesh = same_mesh || rebound;
     if (!reuse_mesh) {
         slot.reset();  // free the old mesh's factors before building the new ones
         const double budget = options.memory_budget_bytes > 0 ? options.memory_budget_bytes : detail::available_memory_bytes();
