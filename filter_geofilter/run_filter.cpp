@@ -270,11 +270,14 @@ RunOutput run_filter(const FilterSpec& spec, const ParameterValues& values, cons
         out.op = d.op;
         out.transfer = d.g;
         out.s1_used = d.cutoff;
+        out.log.push_back(std::string("noise model: ") + noise_model_name(sampled->noise.model) +
+                          " (tangential / normal part of the umbrella offsets where the mesh is most regular: " +
+                          num(sampled->noise.tangential_ratio) + "; 2 and up: in every direction)");
         out.log.push_back("cross-validation (nothing selected) over " + std::to_string(sampled->scores.size()) +
-                          " lowpasses, score x 1e6 (lower is better; residual, degrees of freedom / vertices):");
+                          " lowpasses, score x 1e6 (lower is better; residual, degrees of freedom / noisy numbers):");
         for (const auto& [candidate, score] : sampled->scores)
             out.log.push_back("  " + candidate.origin + ": " + num(1e6 * score.score) + " (" + num(1e6 * score.residual) +
-                              ", " + num(score.degrees_of_freedom / score.vertices) + ")" +
+                              ", " + num(score.degrees_of_freedom / score.observations) + ")" +
                               (candidate.origin == d.origin ? "  <- chosen" : ""));
         out.log.push_back("cutoff sc = " + num(d.cutoff) + " from the sampling: " + d.origin);
         out.log.push_back("design: Butterworth lowpass of order " + std::to_string(order) + ", cutoff sc = " +

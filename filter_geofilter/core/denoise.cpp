@@ -48,6 +48,7 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
     constexpr std::uint64_t seed = 20261201;
 
     SamplingDenoise best;
+    best.noise = estimate_noise_direction(usable.points, usable.triangles);
     double best_score = 0;
     const int runs = 2 * static_cast<int>(candidates.size());
     int run = 0;
@@ -82,7 +83,7 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
             return out;
         };
         Points smoothed;
-        const CrossValidationScore score = generalized_cross_validation(points, triangles, smooth, step, seed, &smoothed);
+        const CrossValidationScore score = generalized_cross_validation(points, triangles, smooth, step, seed, best.noise.model, &smoothed);
         best.scores.emplace_back(design, score);
         if (best.scores.size() == 1 || score.score < best_score) {
             best_score = score.score;

@@ -7,6 +7,7 @@
 #include "cross_validation.h"
 #include "feature.h"
 #include "filter.h"
+#include "noise_direction.h"
 #include "operators.h"
 #include "volume.h"
 
@@ -55,11 +56,13 @@ struct SamplingDenoise {
     DenoiseDesign design;  // the chosen lowpass
     FilterReport report;   // of the chosen lowpass's run; seconds_total covers every candidate
     std::vector<std::pair<DenoiseDesign, CrossValidationScore>> scores;  // every candidate's
+    NoiseDirection noise;  // the noise model the scores assumed
     VolumeRestoreReport volume;
 };
 
-// Tries every candidate on the mesh (each twice: on the input and on the input perturbed
-// along the normals by 1 % of the mean edge length, see cross_validation.h) and keeps the
+// Tries every candidate on the mesh (each twice: on the input and on the input perturbed by
+// 1 % of the mean edge length, along the normals or on every axis as the noise looks from
+// estimate_noise_direction, see cross_validation.h) and keeps the
 // lowest score, then gives each closed component back its input volume (volume.h: the lowpass
 // shrinks thin curved parts). Deterministic: the perturbation's signs come from a fixed seed. The runs
 // solve to 1e-3 of the perturbation or to options.tolerance, whichever is tighter, so that
