@@ -1,8 +1,9 @@
-// What the sequential (mumps_complex_ldlt.cpp) and the distributed
-// (mpi/distributed_complex_ldlt.cpp) complex LDL^T of Kt - r I share: one triangle of Kt with
-// its diagonal to shift, the MUMPS calls, and what their status codes mean. Header-only:
-// each is compiled against its own MUMPS (sequential or parallel; the same structure, other
-// libraries), and the two never meet in one program.
+// What the sequential (mumps_complex_ldlt.cpp), the distributed
+// (mpi/distributed_complex_ldlt.cpp) and the benchmark's (benchmark_complex_pole.cpp) complex
+// LDL^T of Kt - r I share: one triangle of Kt with its diagonal to shift, the MUMPS calls, and
+// what their status codes mean. Header-only: each is compiled against its own MUMPS
+// (sequential or parallel; the same structure, other libraries), and they never meet in one
+// program.
 #pragma once
 
 #include "core/complex_shifted_factor.h"
@@ -45,6 +46,12 @@ public:
         }
         shift_ = r;
         factored_ = true;
+    }
+
+    // INFOG(29) entries; INFOG(21), INFOG(22): MB the factorisation used on the largest
+    // process and on all of them.
+    ComplexFactorSize factor_size() const override {
+        return {double(id_.infog[28]), double(id_.infog[20]), double(id_.infog[21])};
     }
 
 protected:
@@ -144,6 +151,35 @@ private:
     std::vector<double> unshifted_diagonal_;    // Kt's diagonal, to shift from
     std::complex<double> shift_;
     bool factored_ = false;
+};
+
+// Every entry of Kt on the host, solved there: the core's exact pair solve (sequential MUMPS,
+// `comm_fortran` its "no MPI" value) and the benchmark (parallel MUMPS on one rank).
+// `ordering` is ICNTL(7): 0 AMD, 5 METIS.
+class MumpsHostLdlt : public MumpsShiftedLdlt {
+public:
+    MumpsHostLdlt(const SparseMatrix& kt, MUMPS_INT comm_fortran, int ordering) {
+        for (Eigen::Index c = 0; c < kt.outerSize(); ++c)
+            for (SparseMatrix::InnerIterator it(kt, c); it; ++it)
+                if (it.row() <= c) add_entry(it.row(), c, it.value());
+        if (Eigen::Index(diagonal_entries()) != kt.rows())
+            throw Error("the complex LDL^T needs every diagonal entry of Kt stored");
+        initialise(comm_fortran);
+        icntl(7) = ordering;
+        analyse(kt.rows(), false);
+    }
+
+    std::string name() const override { return "a complex LDL^T of Kt - r I (MUMPS)"; }
+
+    double estimated_factorization_bytes() const override {
+        return double(mumps().infog[16]) * 1024.0 * 1024.0;  // INFOG(17), MB
+    }
+
+    Eigen::MatrixXcd solve(const Eigen::MatrixXcd& b) override {
+        Eigen::MatrixXcd x = b;
+        solve_in_place(x.data(), int(x.cols()));
+        return x;
+    }
 };
 
 } // namespace geofilter

@@ -57,12 +57,6 @@ public:
     // This rank's share: INFO(17), MB.
     double estimated_factorization_bytes() const override { return double(mumps().info[16]) * 1024.0 * 1024.0; }
 
-    // INFOG(29) entries; INFOG(21), INFOG(22): MB the factorisation used on the largest rank
-    // and on all of them.
-    ComplexFactorSize factor_size() const override {
-        return {double(mumps().infog[28]), double(mumps().infog[20]), double(mumps().infog[21])};
-    }
-
     // Each rank's rows go to the host, MUMPS solves there with the distributed factor, and
     // each rank gets its rows back: 16 bytes per vertex and column each way.
     Eigen::MatrixXcd solve(const Eigen::MatrixXcd& b) override {
