@@ -204,8 +204,9 @@ FilterSpec denoise() {
             " at twice the bump's radius, and the surface is lowered onto the bumps' base (the pattern's average height"
             " goes too); larger features stay. Without: per-vertex sampling noise is removed by the same lowpass,"
             " its cutoff and operator (Taubin's umbrella or the intrinsic Delaunay cotangent) chosen on the mesh by"
-            " generalized cross-validation among 9 candidates, and closed parts keep their volume; the log lists"
-            " every candidate's score.",
+            " generalized cross-validation among 9 candidates (the noise taken along the normals or in every"
+            " direction, as the mesh shows it), and closed parts keep their volume; the log lists every"
+            " candidate's score.",
             p};
 }
 
