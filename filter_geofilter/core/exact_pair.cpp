@@ -2,6 +2,8 @@
 
 #include "cascade.h"
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 
 namespace geofilter::detail {
@@ -50,6 +52,46 @@ ExactPairSolution solve_pair_exactly(ComplexShiftedFactor& factor, std::complex<
             throw Error("its error bound stayed " + format_number(residual * bound_per_residual / allowed_error, 3) +
                         " times what the tolerance allows");
         z += factor.solve(rho);
+    }
+}
+
+std::optional<Eigen::MatrixXd> solve_pair_exactly_or_explain(ExactPairState& state, const ExactPairSteps& steps,
+                                                             std::complex<double> r, const Eigen::MatrixXd& y,
+                                                             double allowed_error, FilterReport& report) {
+    using clock = std::chrono::steady_clock;
+    const auto seconds_since = [](clock::time_point t) { return std::chrono::duration<double>(clock::now() - t).count(); };
+    const auto give_up = [&](const std::string& why) -> std::optional<Eigen::MatrixXd> {
+        state.factor.reset();
+        state.note = "complex pole pairs by CG: the exact solve was not used (" + why + ")";
+        report.exact_pair_note = state.note;
+        return std::nullopt;
+    };
+    try {
+        if (!state.factor) {
+            if (steps.progress) steps.progress("analysing for the exact pole-pair solve");
+            const auto t = clock::now();
+            state.factor = steps.make_factor();
+            report.seconds_factorization += seconds_since(t);
+        }
+        if (!state.factor->holds(r)) {
+            if (const std::string shortfall = steps.memory_shortfall(state.factor->estimated_factorization_bytes());
+                !shortfall.empty())
+                return give_up(shortfall);
+            if (steps.progress) steps.progress("factorising Kt - r I");
+            const auto t = clock::now();
+            state.factor->factorize(r);
+            state.seconds_per_factorization = seconds_since(t);
+            report.seconds_factorization += state.seconds_per_factorization;
+        }
+        const auto t = clock::now();
+        const ExactPairSolution solved = solve_pair_exactly(*state.factor, r, y, allowed_error, steps.kt_times, steps.norm);
+        report.relative_residual = std::max(report.relative_residual, solved.relative_residual);
+        report.seconds_solve += seconds_since(t);
+        ++report.exact_pairs;
+        report.exact_pair_method = state.factor->name();
+        return solved.x;
+    } catch (const std::exception& e) {
+        return give_up(e.what());
     }
 }
 

@@ -5,11 +5,15 @@
 #pragma once
 
 #include "complex_shifted_factor.h"
+#include "filter.h"
 #include "pcg.h"
 #include "transfer_function.h"
 
 #include <complex>
 #include <functional>
+#include <memory>
+#include <optional>
+#include <string>
 
 namespace geofilter::detail {
 
@@ -53,5 +57,35 @@ struct ExactPairSolution {
 // `kt_times`, `norm` and the factor are.
 ExactPairSolution solve_pair_exactly(ComplexShiftedFactor& factor, std::complex<double> r, const Eigen::MatrixXd& y,
                                      double allowed_error, const BlockOperator& kt_times, const BlockNorm& norm);
+
+// A solver's exact pair solves: the factor holder, made when first needed, and once an exact
+// solve failed, why (every later pair on this state then goes to CG).
+struct ExactPairState {
+    std::unique_ptr<ComplexShiftedFactor> factor;
+    std::string note;
+    double seconds_per_factorization = 0;  // the last complex factorisation; 0 = none yet
+
+    bool failed() const { return !note.empty(); }
+    bool holds(std::complex<double> r) const { return factor && factor->holds(r); }
+};
+
+// What differs from solver to solver: how the factor holder is made, whether a factorisation
+// of that many bytes fits ("" when it does, else why not), Kt times a block of rows, the
+// global norm, and progress (may be empty). Collective where the solver is distributed.
+struct ExactPairSteps {
+    std::function<std::unique_ptr<ComplexShiftedFactor>()> make_factor;
+    std::function<std::string(double bytes)> memory_shortfall;
+    BlockOperator kt_times;
+    BlockNorm norm;
+    std::function<void(const char* stage)> progress;
+};
+
+// The pair by solve_pair_exactly with the state's factor, made and factorised at r as needed;
+// the times, residual and method go into `report`. Empty when that fails or would not fit in
+// memory: the factor is released (its memory goes back before CG needs its own), state.note
+// and report.exact_pair_note say why, and CG solves this pair and every later one.
+std::optional<Eigen::MatrixXd> solve_pair_exactly_or_explain(ExactPairState& state, const ExactPairSteps& steps,
+                                                             std::complex<double> r, const Eigen::MatrixXd& y,
+                                                             double allowed_error, FilterReport& report);
 
 } // namespace geofilter::detail

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "complex_shifted_factor.h"
+#include "exact_pair.h"
 #include "laplace.h"
 
 #include <Eigen/CholmodSupport>
@@ -53,16 +54,14 @@ struct FactorState {
     Eigen::VectorXd sqrt_mass;
     SparseMatrix kt;
     ShiftedCholesky cholesky;       // constructed after kt, which it refers to
-    std::unique_ptr<ComplexShiftedFactor> complex;  // for exact pair solves, built when first used
+    ExactPairState exact;           // exact pair solves: the complex factor, built when first used
     double seconds_per_factorization = 0;   // the last numeric factorisation; 0 = none yet
     double seconds_per_pair_iteration = 0;  // the last conjugate-pair CG run; 0 = none yet
     int last_pair_iterations = 0;           // its iterations
     double last_pair_condition = 0;         // and its preconditioned range's high / low
-    double seconds_per_complex_factorization = 0;  // the last one; 0 = none yet
     // The last run's CG pair solutions, in the order solved (kept only in a FilterCache): the
     // next run's pairs start from them (a preview's parameter change barely moves them).
     std::vector<Eigen::MatrixXd> pair_solutions;
-    std::string exact_pair_note;    // why exact pair solves failed on this state ("" = they did not)
 };
 
 } // namespace geofilter::detail

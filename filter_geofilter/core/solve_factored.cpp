@@ -78,8 +78,8 @@ public:
     Eigen::MatrixXd conjugate_pair(std::complex<double> r, const Eigen::MatrixXd& y, double allowed_error,
                                    double progress) override {
         const double shift = preconditioner_shift(r);
-        if (!state_.exact_pair_note.empty())
-            report_.exact_pair_note = state_.exact_pair_note;  // why every pair on this state is on CG
+        if (state_.exact.failed())
+            report_.exact_pair_note = state_.exact.note;  // why every pair on this state is on CG
         else if (exact_pair_pays(r, shift))
             if (std::optional<Eigen::MatrixXd> x = exact_pair(r, y, allowed_error, progress)) return *x;
         const double twice_re = 2 * r.real(), modulus2 = std::norm(r);
@@ -145,7 +145,7 @@ private:
     // The shared rule (exact_pair.h), with this state's own timings once it has them.
     bool exact_pair_pays(std::complex<double> r, double shift) const {
         if (!problem_.options.complex_factorization) return false;
-        if (state_.complex && state_.complex->holds(r)) return true;
+        if (state_.exact.holds(r)) return true;
         const bool held = state_.cholesky.has_factor() && state_.cholesky.shift() == shift;
         return detail::exact_pair_pays(problem_.g, r, shift, held, measured_costs());
     }
@@ -156,10 +156,10 @@ private:
         PairSolveCosts costs;
         const double ratio = costs.complex_factorization;
         if (state_.seconds_per_factorization > 0) costs.real_factorization = state_.seconds_per_factorization;
-        else if (state_.seconds_per_complex_factorization > 0)
-            costs.real_factorization = state_.seconds_per_complex_factorization / ratio;
-        costs.complex_factorization = state_.seconds_per_complex_factorization > 0
-                                          ? state_.seconds_per_complex_factorization
+        else if (state_.exact.seconds_per_factorization > 0)
+            costs.real_factorization = state_.exact.seconds_per_factorization / ratio;
+        costs.complex_factorization = state_.exact.seconds_per_factorization > 0
+                                          ? state_.exact.seconds_per_factorization
                                           : ratio * costs.real_factorization;
         costs.pair_iteration = state_.seconds_per_factorization > 0 && state_.seconds_per_pair_iteration > 0
                                    ? state_.seconds_per_pair_iteration
@@ -169,59 +169,25 @@ private:
         return costs;
     }
 
-    // The pair by a factorisation of Kt - r I (solve_pair_exactly). Empty (and a note in the
-    // report) when the factorisation is refused or fails, or its bound is not met: CG then
-    // solves it.
+    // The pair by a factorisation of Kt - r I (exact_pair.h); empty when that fails or does
+    // not fit: CG then solves it.
     std::optional<Eigen::MatrixXd> exact_pair(std::complex<double> r, const Eigen::MatrixXd& y, double allowed_error,
                                               double progress) {
-        // Not tried again on this state; the factor's memory goes back before CG needs its own.
-        const auto give_up = [&](const std::string& why) {
-            state_.complex.reset();
-            state_.exact_pair_note = "complex pole pairs by CG: the exact solve was not used (" + why + ")";
-            report_.exact_pair_note = state_.exact_pair_note;
-            return std::nullopt;
-        };
         const FilterOptions& options = problem_.options;
-        if (!state_.complex) {
-            report_progress(options, progress, "analysing for the exact pole-pair solve");
-            const auto t = std::chrono::steady_clock::now();
-            try {
-                state_.complex = options.complex_factorization(state_.kt);
-            } catch (const std::exception& e) {
-                return give_up(e.what());
-            }
-            report_.seconds_factorization += seconds_since(t);
-        }
-        ComplexShiftedFactor& factor = *state_.complex;
-        if (!factor.holds(r)) {
-            const double needed = factor.estimated_factorization_bytes(), available = available_memory_bytes();
-            if (available > 0 && needed > available)
-                return give_up("it would need " + format_number(needed / (1 << 20), 3) + " MiB, " +
-                               format_number(available / (1 << 20), 3) + " MiB are available");
-            report_progress(options, progress, "factorising Kt - r I");
-            const auto t = std::chrono::steady_clock::now();
-            try {
-                factor.factorize(r);
-            } catch (const std::exception& e) {
-                return give_up(e.what());
-            }
-            state_.seconds_per_complex_factorization = seconds_since(t);
-            report_.seconds_factorization += state_.seconds_per_complex_factorization;
-        }
-        const auto t = std::chrono::steady_clock::now();
         const SparseMatrix& kt = state_.kt;
-        try {
-            const ExactPairSolution solved = solve_pair_exactly(
-                factor, r, y, allowed_error, [&](const Eigen::MatrixXd& in, Eigen::MatrixXd& out) { out = kt * in; },
-                [](const Eigen::MatrixXd& m) { return m.norm(); });
-            report_.relative_residual = std::max(report_.relative_residual, solved.relative_residual);
-            report_.seconds_solve += seconds_since(t);
-            ++report_.exact_pairs;
-            report_.exact_pair_method = factor.name();
-            return solved.x;
-        } catch (const std::exception& e) {
-            return give_up(e.what());
-        }
+        const ExactPairSteps steps{
+            [&] { return options.complex_factorization(kt); },
+            [](double needed) {
+                const double available = available_memory_bytes();
+                return available > 0 && needed > available
+                           ? "it would need " + format_number(needed / (1 << 20), 3) + " MiB, " +
+                                 format_number(available / (1 << 20), 3) + " MiB are available"
+                           : std::string();
+            },
+            [&](const Eigen::MatrixXd& in, Eigen::MatrixXd& out) { out = kt * in; },
+            [](const Eigen::MatrixXd& m) { return m.norm(); },
+            [&](const char* stage) { report_progress(options, progress, stage); }};
+        return solve_pair_exactly_or_explain(state_.exact, steps, r, y, allowed_error, report_);
     }
 
     // The cache's state when the problem brings a slot for one, else a state of this run's

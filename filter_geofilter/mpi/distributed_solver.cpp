@@ -345,8 +345,8 @@ public:
                                    double) override {
         const double twice_re = 2 * r.real(), modulus2 = std::norm(r), shift = std::abs(r);
         if (header_.pole_solver == PoleSolver::Direct) {
-            if (!exact_pair_note_.empty()) report_.exact_pair_note = exact_pair_note_;
-            else if ((complex_ && complex_->holds(r)) ||
+            if (exact_.failed()) report_.exact_pair_note = exact_.note;
+            else if (exact_.holds(r) ||
                      detail::exact_pair_pays(header_.g, r, shift, shift_ == shift, detail::PairSolveCosts{}))
                 if (std::optional<Eigen::MatrixXd> x = exact_pair(r, y, allowed_error)) return *x;
         }
@@ -375,35 +375,15 @@ private:
     // Empty (and a note for the log) when MUMPS fails or a rank lacks the memory: CG then
     // solves this pair and every later one. All of it collective, so every rank agrees.
     std::optional<Eigen::MatrixXd> exact_pair(std::complex<double> r, const Eigen::MatrixXd& y, double allowed_error) {
-        const auto give_up = [&](const std::string& why) {
-            complex_.reset();
-            exact_pair_note_ = "complex pole pairs by CG: the exact solve was not used (" + why + ")";
-            report_.exact_pair_note = exact_pair_note_;
-            return std::nullopt;
-        };
-        try {
-            const auto t = std::chrono::steady_clock::now();
-            if (!complex_) complex_ = distributed_complex_ldlt(comm_, shifted_, applied_shift_);
-            if (!complex_->holds(r)) {
-                if (const std::string shortfall = memory_shortfall(complex_->estimated_factorization_bytes());
-                    !shortfall.empty())
-                    return give_up(shortfall);
-                complex_->factorize(r);
-                complex_size = complex_->factor_size();
-            }
-            report_.seconds_factorization += seconds_since(t);
-            const auto t_solve = std::chrono::steady_clock::now();
-            const detail::ExactPairSolution solved = detail::solve_pair_exactly(
-                *complex_, r, y, allowed_error, [&](const Eigen::MatrixXd& in, Eigen::MatrixXd& out) { out = kt_times(in); },
-                [&](const Eigen::MatrixXd& local) { return global_norm(local); });
-            report_.relative_residual = std::max(report_.relative_residual, solved.relative_residual);
-            report_.seconds_solve += seconds_since(t_solve);
-            ++report_.exact_pairs;
-            report_.exact_pair_method = complex_->name();
-            return solved.x;
-        } catch (const std::exception& e) {
-            return give_up(e.what());
-        }
+        const detail::ExactPairSteps steps{
+            [&] { return distributed_complex_ldlt(comm_, shifted_, applied_shift_); },
+            [&](double needed_here) { return memory_shortfall(needed_here); },
+            [&](const Eigen::MatrixXd& in, Eigen::MatrixXd& out) { out = kt_times(in); },
+            [&](const Eigen::MatrixXd& local) { return global_norm(local); },
+            {}};
+        std::optional<Eigen::MatrixXd> x = detail::solve_pair_exactly_or_explain(exact_, steps, r, y, allowed_error, report_);
+        if (x) complex_size = exact_.factor->factor_size();
+        return x;
     }
 
     // "" when every rank's share of the factorisation (MUMPS's estimate) fits in its share of
@@ -425,7 +405,7 @@ private:
     }
 
     void release() {
-        complex_.reset();
+        exact_.factor.reset();
         KSPDestroy(&ksp_);
         MatDestroy(&shifted_);
         VecDestroy(&in_);
@@ -596,8 +576,7 @@ private:
     KSP ksp_ = nullptr;
     Vec in_ = nullptr, out_ = nullptr;
     double shift_ = NAN;
-    std::unique_ptr<ComplexShiftedFactor> complex_;
-    std::string exact_pair_note_;  // why pairs went back to CG, once the exact solve failed
+    detail::ExactPairState exact_;  // the complex LDL^T, and why pairs went back to CG if it failed
 };
 
 // Collective: every rank's part of one solve. Rank 0 brings the problem and gets the result
