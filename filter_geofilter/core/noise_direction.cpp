@@ -38,13 +38,14 @@ NoiseDirection estimate_noise_direction(const Points& points, const Triangles& t
     Eigen::MatrixXd normal = vertex_normals(points, triangles);
     for (int ring = 0; ring < normal_smoothing_rings; ++ring) {
         normal += neighbour_sum(normal);
-        normal.rowwise().normalize();
+        for (Eigen::Index i = 0; i < normal.rows(); ++i)
+            if (const double length = normal.row(i).norm(); length > 0) normal.row(i) /= length;
     }
     const Eigen::MatrixXd offset = -(degree.cwiseMax(1.0).cwiseInverse().asDiagonal() * (k * points));
     Eigen::MatrixXd parts(points.rows(), 2);  // squared normal and tangential parts
     std::vector<bool> used(points.rows());
     for (Eigen::Index i = 0; i < points.rows(); ++i) {
-        used[i] = degree[i] > 0 && normal.row(i).allFinite() && normal.row(i).squaredNorm() > 0;
+        used[i] = degree[i] > 0 && normal.row(i).squaredNorm() > 0;
         const double along = used[i] ? offset.row(i).dot(normal.row(i)) : 0.0;
         parts(i, 0) = along * along;
         parts(i, 1) = used[i] ? offset.row(i).squaredNorm() - along * along : 0.0;
