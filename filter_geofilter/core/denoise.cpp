@@ -83,7 +83,8 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
             return out;
         };
         Points smoothed;
-        const CrossValidationScore score = generalized_cross_validation(points, triangles, smooth, step, seed, best.noise.model, &smoothed);
+        const CrossValidationScore score =
+            generalized_cross_validation(points, triangles, smooth, step, seed, best.noise.model, &smoothed);
         best.scores.emplace_back(design, score);
         if (best.scores.size() == 1 || score.score < best_score) {
             best_score = score.score;
