@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Issue 13's complex-pole experiment: the factored solver as it is (a Cholesky factor of
 # Kt + |r| I preconditioning CG on each complex pole pair) against an exact solve of each pair
-# by a complex-symmetric LDL^T of Kt - r I (MUMPS's ZMUMPS, AMD or METIS ordering), on the 1M
+# by a complex-symmetric LDL^T of Kt - r I (MUMPS: ZMUMPS with AMD or METIS, CMUMPS refined), on the 1M
 # torus and the 1.1M subdivided human scan, for the filters with complex poles. One process
 # per case, so that each peak memory is the case's own. Prints a markdown table (~30 min here).
 #   scripts/benchmark-complex-pole.sh [--quick]   (--quick: the 280k scan only)
@@ -17,7 +17,7 @@ echo "| mesh | vertices | filter | pole pairs | method | assembly (s) | factoris
 echo "|---|---:|---|---:|---|---:|---:|---:|---:|---:|---:|"
 for mesh in "${meshes[@]}"; do
     for filter in lowpass exaggeration notch butterworth8; do
-        for method in today ldlt-amd ldlt-metis; do
+        for method in today ldlt-amd ldlt-metis ldlt-single; do
             "$bench" "$mesh" "$filter" "$method" | sed "s|$top/||"
         done
     done

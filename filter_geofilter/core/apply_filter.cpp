@@ -28,7 +28,8 @@ const char* solver_name(Solver solver) {
 std::string solver_used(const FilterReport& report) {
     std::string used = report.external_solver.empty() ? solver_name(report.solver) : report.external_solver;
     if (report.exact_pairs > 0)
-        used += "; " + std::to_string(report.exact_pairs) + " complex pole pair(s) solved exactly by " + report.exact_pair_method;
+        used += "; " + std::to_string(report.exact_pairs) + " complex pole pair(s) solved exactly by " +
+                report.exact_pair_method + " with " + std::to_string(report.exact_pair_refinements) + " refinement(s)";
     if (!report.exact_pair_note.empty()) used += "; " + report.exact_pair_note;
     return used;
 }

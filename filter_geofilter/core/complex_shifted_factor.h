@@ -32,6 +32,10 @@ public:
     // (Kt - r I)^-1 b with the current factor.
     virtual Eigen::MatrixXcd solve(const Eigen::MatrixXcd& b) = 0;
     virtual ComplexFactorSize factor_size() const { return {}; }
+    // For a factor of lower precision than the refinement it feeds: replaces it by a
+    // double-precision factor of the same shift and returns true; false when it cannot (the
+    // precision is double already). Collective where the factor is.
+    virtual bool raise_precision() { return false; }
 };
 
 // Analyses the pattern of `kt` (which must outlive the factor) and returns a factor holder;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 namespace geofilter::detail {
 
@@ -33,25 +34,44 @@ bool exact_pair_pays(const TransferFunction& g, std::complex<double> r, double s
 
 ExactPairSolution solve_pair_exactly(ComplexShiftedFactor& factor, std::complex<double> r, const Eigen::MatrixXd& y,
                                      double allowed_error, const BlockOperator& kt_times, const BlockNorm& norm) {
+    // A refinement that does not divide the residual by this much is limited by the factor's
+    // precision: a double-precision factor then costs less than the refinements still needed.
+    constexpr double least_gain = 10;
+    constexpr int most_refinements = 6;
     const double bound_per_residual = 1 / (std::sqrt(pair_operator_lower_bound(r)) * std::abs(r.imag()));
     const double y_norm = std::max(norm(y), 1e-300);
+    // Real and imaginary parts one at a time: these vectors add to the factor's memory.
     Eigen::MatrixXcd z = factor.solve(y.cast<std::complex<double>>());
-    Eigen::MatrixXd kt_re, kt_im;
+    Eigen::MatrixXd part, kt_part;
+    Eigen::MatrixXcd rho(y.rows(), y.cols());
+    double previous = std::numeric_limits<double>::infinity();
+    int solves = 1;
     for (int refinement = 0;; ++refinement) {
-        const Eigen::MatrixXd z_re = z.real(), z_im = z.imag();
-        kt_times(z_re, kt_re);
-        kt_times(z_im, kt_im);
-        Eigen::MatrixXcd rho(y.rows(), y.cols());
-        rho.real() = y - kt_re + r.real() * z_re - r.imag() * z_im;
-        rho.imag() = r.real() * z_im + r.imag() * z_re - kt_im;
-        Eigen::MatrixXd parts(y.rows(), 2 * y.cols());
-        parts << rho.real(), rho.imag();
-        const double residual = norm(parts);
-        if (residual * bound_per_residual <= allowed_error) return {Eigen::MatrixXd(z.imag() / r.imag()), residual / y_norm};
-        if (refinement == 3)
-            throw Error("its error bound stayed " + format_number(residual * bound_per_residual / allowed_error, 3) +
-                        " times what the tolerance allows");
+        part = z.real();
+        kt_times(part, kt_part);
+        rho.real() = y - kt_part + r.real() * part - r.imag() * z.imag();
+        part = z.imag();
+        kt_times(part, kt_part);
+        rho.imag() = r.real() * part + r.imag() * z.real() - kt_part;
+        part = rho.real();
+        const double real_norm = norm(part);
+        part = rho.imag();
+        const double residual = std::hypot(real_norm, norm(part));
+        if (residual * bound_per_residual <= allowed_error)
+            return {Eigen::MatrixXd(z.imag() / r.imag()), residual / y_norm, solves - 1};
+        if (refinement == most_refinements || residual * least_gain > previous) {
+            if (!factor.raise_precision())
+                throw Error("its error bound stayed " + format_number(residual * bound_per_residual / allowed_error, 3) +
+                            " times what the tolerance allows");
+            z = factor.solve(y.cast<std::complex<double>>());
+            ++solves;
+            previous = std::numeric_limits<double>::infinity();
+            refinement = -1;
+            continue;
+        }
+        previous = residual;
         z += factor.solve(rho);
+        ++solves;
     }
 }
 
@@ -88,6 +108,7 @@ std::optional<Eigen::MatrixXd> solve_pair_exactly_or_explain(ExactPairState& sta
         report.relative_residual = std::max(report.relative_residual, solved.relative_residual);
         report.seconds_solve += seconds_since(t);
         ++report.exact_pairs;
+        report.exact_pair_refinements += solved.refinements;
         report.exact_pair_method = state.factor->name();
         return solved.x;
     } catch (const std::exception& e) {

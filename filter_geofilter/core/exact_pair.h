@@ -47,14 +47,16 @@ using BlockNorm = std::function<double(const Eigen::MatrixXd&)>;
 struct ExactPairSolution {
     Eigen::MatrixXd x;
     double relative_residual = 0;  // of the complex system, after refinement
+    int refinements = 0;           // solves with the factor beyond the first
 };
 
 // Im(z) / Im r for z = (Kt - r)^-1 y, with `factor` holding Kt - r I, refined with the
-// residual rho = y - (Kt - r) z until its error bound meets allowed_error (at most 3
-// refinements). The spectrum of Kt being real and non-negative, the error in z is at most
-// |rho| / d with d = min over s >= 0 of |s - r|, and in the pair at most that over Im r: a
-// bound, as CG's. Throws Error when the bound stays above the tolerance. Collective when
-// `kt_times`, `norm` and the factor are.
+// double-precision residual rho = y - (Kt - r) z until its error bound meets allowed_error.
+// The spectrum of Kt being real and non-negative, the error in z is at most |rho| / d with
+// d = min over s >= 0 of |s - r|, and in the pair at most that over Im r: a bound, as CG's.
+// When a refinement gains less than a factor 10, or after 6, the factor's precision is raised
+// (factor.raise_precision()) and the solve starts again; throws Error when it cannot be.
+// Collective when `kt_times`, `norm` and the factor are.
 ExactPairSolution solve_pair_exactly(ComplexShiftedFactor& factor, std::complex<double> r, const Eigen::MatrixXd& y,
                                      double allowed_error, const BlockOperator& kt_times, const BlockNorm& norm);
 

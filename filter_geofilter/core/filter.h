@@ -96,6 +96,7 @@ struct FilterReport {
     std::string external_solver;
     int exact_pairs = 0;            // complex pole pairs solved by a factorisation of Kt - r I, not CG
     std::string exact_pair_method;  // that factorisation, in words
+    int exact_pair_refinements = 0; // solves with that factor beyond one per pair
     std::string exact_pair_note;    // why a pair predicted to pay was solved by CG after all
 };
 

@@ -2,6 +2,8 @@
 
 #include "mumps_shifted_ldlt.h"
 
+#include "core/mixed_precision_factor.h"
+
 namespace geofilter {
 
 namespace {
@@ -14,7 +16,9 @@ constexpr int amd_ordering = 0;
 } // namespace
 
 std::unique_ptr<ComplexShiftedFactor> mumps_complex_ldlt(const SparseMatrix& kt) {
-    return std::make_unique<MumpsHostLdlt>(kt, kNoMpi, amd_ordering);
+    return std::make_unique<MixedPrecisionFactor>(
+        [&kt] { return std::make_unique<MumpsHostLdlt<SingleComplexMumps>>(kt, kNoMpi, amd_ordering); },
+        [&kt] { return std::make_unique<MumpsHostLdlt<DoubleComplexMumps>>(kt, kNoMpi, amd_ordering); });
 }
 
 } // namespace geofilter

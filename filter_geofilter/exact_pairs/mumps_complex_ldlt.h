@@ -8,7 +8,8 @@
 
 namespace geofilter {
 
-// A ComplexShiftedFactorization: analyses `kt` (AMD ordering) and returns a factor holder.
+// A ComplexShiftedFactorization: analyses `kt` (AMD ordering) and returns a factor holder,
+// single precision first (mixed_precision_factor.h). `kt` must outlive it.
 std::unique_ptr<ComplexShiftedFactor> mumps_complex_ldlt(const SparseMatrix& kt);
 
 } // namespace geofilter

@@ -3,23 +3,44 @@
 // LDL^T of Kt - r I share: one triangle of Kt with its diagonal to shift, the MUMPS calls, and
 // what their status codes mean. Header-only: each is compiled against its own MUMPS
 // (sequential or parallel; the same structure, other libraries), and they never meet in one
-// program.
+// program. Each comes in MUMPS's two complex arithmetics: single precision (CMUMPS), whose
+// factor takes half the memory and which the exact pair solve refines in double precision,
+// and double (ZMUMPS), for when that refinement stalls (core/mixed_precision_factor.h).
 #pragma once
 
 #include "core/complex_shifted_factor.h"
 
+#include <cmumps_c.h>
 #include <zmumps_c.h>
 
 #include <algorithm>
 #include <complex>
 #include <limits>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace geofilter {
 
+struct SingleComplexMumps {
+    using Instance = CMUMPS_STRUC_C;
+    using Scalar = std::complex<float>;
+    static void call(Instance* id) { cmumps_c(id); }
+    static constexpr const char* precision = "single precision, refined in double";
+};
+
+struct DoubleComplexMumps {
+    using Instance = ZMUMPS_STRUC_C;
+    using Scalar = std::complex<double>;
+    static void call(Instance* id) { zmumps_c(id); }
+    static constexpr const char* precision = "double precision";
+};
+
+template <class Arithmetic>
 class MumpsShiftedLdlt : public ComplexShiftedFactor {
 public:
+    using Scalar = typename Arithmetic::Scalar;
+
     ~MumpsShiftedLdlt() override { release(); }
     MumpsShiftedLdlt(const MumpsShiftedLdlt&) = delete;
     MumpsShiftedLdlt& operator=(const MumpsShiftedLdlt&) = delete;
@@ -29,10 +50,10 @@ public:
     void factorize(std::complex<double> r) override {
         if (holds(r)) return;
         factored_ = false;
-        for (size_t k = 0; k < diagonal_.size(); ++k) values_[diagonal_[k]] = unshifted_diagonal_[k] - r;
+        for (size_t k = 0; k < diagonal_.size(); ++k) values_[diagonal_[k]] = Scalar(unshifted_diagonal_[k] - r);
         for (int attempt = 0;; ++attempt) {
             id_.job = 2;
-            zmumps_c(&id_);
+            Arithmetic::call(&id_);
             // INFOG(1) = -8, -9: the workspace the analysis estimated was too small for the
             // pivoting it did not foresee; more room (ICNTL(14), percent) lets it through. The
             // status is global, so every process takes the same branch.
@@ -68,7 +89,7 @@ protected:
         }
         rows_.push_back(MUMPS_INT(row + 1));
         cols_.push_back(MUMPS_INT(column + 1));
-        values_.emplace_back(value, 0.0);
+        values_.emplace_back(Scalar(value));
     }
     size_t diagonal_entries() const { return diagonal_.size(); }
 
@@ -93,12 +114,12 @@ protected:
             id_.nnz_loc = MUMPS_INT8(rows_.size());
             id_.irn_loc = rows_.data();
             id_.jcn_loc = cols_.data();
-            id_.a_loc = reinterpret_cast<ZMUMPS_COMPLEX*>(values_.data());
+            id_.a_loc = reinterpret_cast<decltype(id_.a_loc)>(values_.data());
         } else {
             id_.nnz = MUMPS_INT8(rows_.size());
             id_.irn = rows_.data();
             id_.jcn = cols_.data();
-            id_.a = reinterpret_cast<ZMUMPS_COMPLEX*>(values_.data());
+            id_.a = reinterpret_cast<decltype(id_.a)>(values_.data());
         }
         try {
             run(1, "analysis");
@@ -108,22 +129,35 @@ protected:
         }
     }
 
-    // Solves for the nrhs columns at `rhs` (leading dimension n) in place, on the host.
+    // Solves for the nrhs columns at `rhs` (leading dimension n) in place, on the host (the
+    // other processes pass nullptr), in the factor's precision.
     void solve_in_place(std::complex<double>* rhs, int nrhs) {
+        std::vector<Scalar> rounded;
+        Scalar* data = nullptr;
+        if constexpr (std::is_same_v<Scalar, std::complex<double>>) {
+            data = rhs;
+        } else if (rhs) {
+            rounded.assign(rhs, rhs + size_t(id_.n) * size_t(nrhs));
+            data = rounded.data();
+        }
         id_.nrhs = MUMPS_INT(nrhs);
         id_.lrhs = id_.n;
-        id_.rhs = reinterpret_cast<ZMUMPS_COMPLEX*>(rhs);
+        id_.rhs = reinterpret_cast<decltype(id_.rhs)>(data);
         run(3, "solve");
         id_.rhs = nullptr;
+        if constexpr (!std::is_same_v<Scalar, std::complex<double>>)
+            std::copy(rounded.begin(), rounded.end(), rhs);
     }
 
+    std::string described(const char* what) const { return std::string(what) + ", " + Arithmetic::precision + ")"; }
+
     MUMPS_INT& icntl(int k) { return id_.icntl[k - 1]; }
-    const ZMUMPS_STRUC_C& mumps() const { return id_; }
+    const typename Arithmetic::Instance& mumps() const { return id_; }
 
 private:
     void run(int job, const char* what) {
         id_.job = job;
-        zmumps_c(&id_);
+        Arithmetic::call(&id_);
         check(id_.infog[0], what);
     }
 
@@ -140,13 +174,13 @@ private:
         if (!initialised_) return;
         initialised_ = false;
         id_.job = -2;
-        zmumps_c(&id_);
+        Arithmetic::call(&id_);
     }
 
-    ZMUMPS_STRUC_C id_{};
+    typename Arithmetic::Instance id_{};
     bool initialised_ = false;
     std::vector<MUMPS_INT> rows_, cols_;
-    std::vector<std::complex<double>> values_;  // MUMPS reads this process's entries from here
+    std::vector<Scalar> values_;                // MUMPS reads this process's entries from here
     std::vector<size_t> diagonal_;              // where the diagonal sits in values_
     std::vector<double> unshifted_diagonal_;    // Kt's diagonal, to shift from
     std::complex<double> shift_;
@@ -156,28 +190,29 @@ private:
 // Every entry of Kt on the host, solved there: the core's exact pair solve (sequential MUMPS,
 // `comm_fortran` its "no MPI" value) and the benchmark (parallel MUMPS on one rank).
 // `ordering` is ICNTL(7): 0 AMD, 5 METIS.
-class MumpsHostLdlt : public MumpsShiftedLdlt {
+template <class Arithmetic>
+class MumpsHostLdlt : public MumpsShiftedLdlt<Arithmetic> {
 public:
     MumpsHostLdlt(const SparseMatrix& kt, MUMPS_INT comm_fortran, int ordering) {
         for (Eigen::Index c = 0; c < kt.outerSize(); ++c)
             for (SparseMatrix::InnerIterator it(kt, c); it; ++it)
-                if (it.row() <= c) add_entry(it.row(), c, it.value());
-        if (Eigen::Index(diagonal_entries()) != kt.rows())
+                if (it.row() <= c) this->add_entry(it.row(), c, it.value());
+        if (Eigen::Index(this->diagonal_entries()) != kt.rows())
             throw Error("the complex LDL^T needs every diagonal entry of Kt stored");
-        initialise(comm_fortran);
-        icntl(7) = ordering;
-        analyse(kt.rows(), false);
+        this->initialise(comm_fortran);
+        this->icntl(7) = ordering;
+        this->analyse(kt.rows(), false);
     }
 
-    std::string name() const override { return "a complex LDL^T of Kt - r I (MUMPS)"; }
+    std::string name() const override { return this->described("a complex LDL^T of Kt - r I (MUMPS"); }
 
     double estimated_factorization_bytes() const override {
-        return double(mumps().infog[16]) * 1024.0 * 1024.0;  // INFOG(17), MB
+        return double(this->mumps().infog[16]) * 1024.0 * 1024.0;  // INFOG(17), MB
     }
 
     Eigen::MatrixXcd solve(const Eigen::MatrixXcd& b) override {
         Eigen::MatrixXcd x = b;
-        solve_in_place(x.data(), int(x.cols()));
+        this->solve_in_place(x.data(), int(x.cols()));
         return x;
     }
 };

@@ -1,5 +1,6 @@
 #include "distributed_complex_ldlt.h"
 
+#include "core/mixed_precision_factor.h"
 #include "exact_pairs/mumps_shifted_ldlt.h"
 
 #include <string>
@@ -13,7 +14,8 @@ void check_petsc(PetscErrorCode code, const char* what) {
     if (code != 0) throw Error(std::string("PETSc failed while ") + what + " for the complex LDL^T");
 }
 
-class DistributedComplexLdlt : public MumpsShiftedLdlt {
+template <class Arithmetic>
+class DistributedComplexLdlt : public MumpsShiftedLdlt<Arithmetic> {
 public:
     DistributedComplexLdlt(MPI_Comm comm, Mat kt, double applied_shift) : comm_(comm) {
         PetscInt first = 0, end = 0, n = 0;
@@ -37,7 +39,7 @@ public:
                 const PetscScalar* values = nullptr;
                 check_petsc(MatGetRow(kt, row, &count, &columns, &values), "reading Kt");
                 for (PetscInt k = 0; k < count; ++k)
-                    if (columns[k] >= row) add_entry(row, columns[k], values[k] - (columns[k] == row ? applied_shift : 0.0));
+                    if (columns[k] >= row) this->add_entry(row, columns[k], values[k] - (columns[k] == row ? applied_shift : 0.0));
                 check_petsc(MatRestoreRow(kt, row, &count, &columns, &values), "reading Kt");
             }
         } catch (const std::exception& e) {
@@ -46,26 +48,26 @@ public:
         int failed = failure.empty() ? 0 : 1;
         MPI_Allreduce(MPI_IN_PLACE, &failed, 1, MPI_INT, MPI_MAX, comm);
         if (failed) throw Error(failure.empty() ? "another rank could not hand MUMPS its rows of Kt" : failure);
-        initialise(MUMPS_INT(MPI_Comm_c2f(comm)));
-        icntl(20) = 0;  // dense right-hand sides, on the host
-        icntl(21) = 0;  // the solution back on the host
-        analyse(n, true);
+        this->initialise(MUMPS_INT(MPI_Comm_c2f(comm)));
+        this->icntl(20) = 0;  // dense right-hand sides, on the host
+        this->icntl(21) = 0;  // the solution back on the host
+        this->analyse(n, true);
     }
 
-    std::string name() const override { return "a complex LDL^T of Kt - r I (parallel MUMPS)"; }
+    std::string name() const override { return this->described("a complex LDL^T of Kt - r I (parallel MUMPS"); }
 
     // This rank's share: INFO(17), MB.
-    double estimated_factorization_bytes() const override { return double(mumps().info[16]) * 1024.0 * 1024.0; }
+    double estimated_factorization_bytes() const override { return double(this->mumps().info[16]) * 1024.0 * 1024.0; }
 
     // Each rank's rows go to the host, MUMPS solves there with the distributed factor, and
     // each rank gets its rows back: 16 bytes per vertex and column each way.
     Eigen::MatrixXcd solve(const Eigen::MatrixXcd& b) override {
-        const int n = mumps().n, columns = int(b.cols());
+        const int n = this->mumps().n, columns = int(b.cols());
         Eigen::MatrixXcd whole(rank_ == 0 ? n : 0, columns);
         for (int c = 0; c < columns; ++c)
             MPI_Gatherv(b.col(c).data(), int(b.rows()), MPI_C_DOUBLE_COMPLEX, rank_ == 0 ? whole.col(c).data() : nullptr,
                         rows_per_rank_.data(), first_row_.data(), MPI_C_DOUBLE_COMPLEX, 0, comm_);
-        solve_in_place(rank_ == 0 ? whole.data() : nullptr, columns);
+        this->solve_in_place(rank_ == 0 ? whole.data() : nullptr, columns);
         Eigen::MatrixXcd x(b.rows(), columns);
         for (int c = 0; c < columns; ++c)
             MPI_Scatterv(rank_ == 0 ? whole.col(c).data() : nullptr, rows_per_rank_.data(), first_row_.data(),
@@ -81,8 +83,12 @@ private:
 
 } // namespace
 
-std::unique_ptr<ComplexShiftedFactor> distributed_complex_ldlt(MPI_Comm comm, Mat kt, double applied_shift) {
-    return std::make_unique<DistributedComplexLdlt>(comm, kt, applied_shift);
+std::unique_ptr<ComplexShiftedFactor> distributed_complex_ldlt(MPI_Comm comm, Mat kt, const double& applied_shift) {
+    return std::make_unique<MixedPrecisionFactor>(
+        [&] { return std::make_unique<DistributedComplexLdlt<SingleComplexMumps>>(comm, kt, applied_shift); },
+        [comm, kt, &applied_shift] {
+            return std::make_unique<DistributedComplexLdlt<DoubleComplexMumps>>(comm, kt, applied_shift);
+        });
 }
 
 } // namespace geofilter::mpi

@@ -4,6 +4,7 @@
 // refused or fails must leave the pair to CG with the same accuracy, saying why.
 #include "core/butterworth.h"
 #include "core/filter.h"
+#include "core/mixed_precision_factor.h"
 #include "exact_pairs.h"
 #include "real_mesh.h"
 #include "spectral.h"
@@ -37,6 +38,25 @@ public:
 
 private:
     bool fails_;
+};
+
+// Another factor's solves times `scale`, under its own name: scale 1.5 makes a factor whose
+// every refinement only halves the error, which a single-precision factor too imprecise for
+// the pole would look like.
+class ScaledFactor : public ComplexShiftedFactor {
+public:
+    ScaledFactor(std::unique_ptr<ComplexShiftedFactor> inner, double scale, std::string name)
+        : inner_(std::move(inner)), scale_(scale), name_(std::move(name)) {}
+    std::string name() const override { return name_; }
+    double estimated_factorization_bytes() const override { return inner_->estimated_factorization_bytes(); }
+    void factorize(std::complex<double> r) override { inner_->factorize(r); }
+    bool holds(std::complex<double> r) const override { return inner_->holds(r); }
+    Eigen::MatrixXcd solve(const Eigen::MatrixXcd& b) override { return scale_ * inner_->solve(b); }
+
+private:
+    std::unique_ptr<ComplexShiftedFactor> inner_;
+    double scale_;
+    std::string name_;
 };
 
 // The patch's dense spectrum, computed once for the tests that need it (seconds under ASan).
@@ -140,4 +160,52 @@ TEST(ExactPairs, AFilterCacheKeepsTheComplexFactorForTheSameFilter) {
     EXPECT_GT(first.seconds_factorization, 0);
     EXPECT_EQ(second.seconds_factorization, 0);
     EXPECT_LE((a - b).cwiseAbs().maxCoeff(), 1e-6 * bbox_diagonal(m.points));
+}
+
+TEST(ExactPairs, TheSinglePrecisionFactorIsRefinedInDoubleToTheTolerance) {
+    if (!exact_pair_factorization()) GTEST_SKIP() << "configured with GEOFILTER_EXACT_PAIRS=OFF";
+    const Mesh& m = man_scan_patch();
+    const Spectrum& spectrum = man_patch_spectrum();
+    const TransferFunction notch = design_second_order({630, 1260, 1, 0.01, 1.1});
+    // Far below what single precision alone resolves (~1e-7 of the solution's size at best).
+    const double tolerance = 1e-11;
+    FilterReport report;
+    const Points out = apply_filter(m.points, m.triangles, notch, with_exact_pairs(tolerance), &report);
+    EXPECT_EQ(report.exact_pairs, 1) << report.exact_pair_note;
+    EXPECT_NE(report.exact_pair_method.find("single precision"), std::string::npos) << report.exact_pair_method;
+    EXPECT_GE(report.exact_pair_refinements, 1);
+    EXPECT_LE(area_weighted_rms(out - spectral_filter(spectrum, m.points, notch), spectrum.mass),
+              tolerance * bbox_diagonal(m.points));
+}
+
+TEST(ExactPairs, AFactorTooImpreciseToRefineIsReplacedByADoublePrecisionOneOrLeftToCg) {
+    if (!exact_pair_factorization()) GTEST_SKIP() << "configured with GEOFILTER_EXACT_PAIRS=OFF";
+    const Mesh m = wavy_sheet(30);
+    const Spectrum spectrum = spectrum_of(m);
+    const TransferFunction notch = design_second_order({630, 1260, 1, 0.01, 1.1});
+    const Points exact = spectral_filter(spectrum, m.points, notch);
+    for (bool can_raise : {true, false}) {
+        SCOPED_TRACE(can_raise ? "a double-precision factor to fall back on" : "none");
+        FilterOptions options = with_exact_pairs(1e-9);
+        options.complex_factorization = [can_raise](const SparseMatrix& kt) {
+            MixedPrecisionFactor::Make precise;
+            if (can_raise)
+                precise = [&kt] { return std::make_unique<ScaledFactor>(exact_pair_factorization()(kt), 1.0, "precise"); };
+            return std::make_unique<MixedPrecisionFactor>(
+                [&kt] { return std::make_unique<ScaledFactor>(exact_pair_factorization()(kt), 1.5, "imprecise"); },
+                precise);
+        };
+        FilterReport report;
+        const Points out = apply_filter(m.points, m.triangles, notch, options, &report);
+        if (can_raise) {
+            EXPECT_EQ(report.exact_pairs, 1) << report.exact_pair_note;
+            EXPECT_EQ(report.exact_pair_method, "precise");
+            EXPECT_EQ(report.iterations, 0);
+        } else {
+            EXPECT_EQ(report.exact_pairs, 0);
+            EXPECT_NE(report.exact_pair_note.find("error bound stayed"), std::string::npos) << report.exact_pair_note;
+            EXPECT_GT(report.iterations, 0);
+        }
+        EXPECT_LE(area_weighted_rms(out - exact, spectrum.mass), 1e-9 * bbox_diagonal(m.points));
+    }
 }
