@@ -218,19 +218,71 @@ TransferFunction design_from_values(const FilterSpec& spec, const ParameterValue
     throw Error("internal: " + spec.name + " is not a filter");
 }
 
-RunOutput run_filter(const FilterSpec& spec, const ParameterValues& values, const RunInput& input) {
+FilterOptions filter_options(const FilterSpec& spec, const ParameterValues& values) {
+    FilterOptions options;
+    options.solver = choice_of(spec, values, param::solver) == 1 ? Solver::JacobiPcg : Solver::Factored;
+    options.tolerance = value_of(spec, values, param::tolerance);
+    const double cap = value_of(spec, values, param::max_iterations);
+    if (!(cap >= 1 && cap <= 1e9)) throw Error("maxIterations must be between 1 and 1e9 (got " + num(cap) + ")");
+    options.max_iterations = static_cast<int>(cap);
+    options.fix_boundary = value_of(spec, values, param::fix_boundary) != 0;
+    return options;
+}
+
+namespace {
+
+// What the designed G does, from its description to its peak and the warnings about it.
+void log_response(const FilterSpec& spec, const ParameterValues& values, RunOutput& out) {
+    out.log.push_back(out.transfer.describe());
+    const double g1 = spec.kind == FilterKind::SecondOrder ? value_of(spec, values, param::G1) : 0.0;
+    const double s_ref = out.s1_used > 0 ? out.s1_used : 1.0;
+    const ResponseReport response = analyse_response(out.transfer, g1, s_ref * 1e-4, s_ref * 1e4);
+    out.log.push_back("peak |G| = " + num(response.peak_gain) + " at s = " + num(response.peak_frequency) +
+                      "; G(0) = " + num(out.transfer(0)) + ", G(inf) = " + num(out.transfer.at_infinity()));
+    for (const auto& w : response.warnings) out.log.push_back("warning: " + w);
+}
+
+} // namespace
+
+RunOutput design_run(const FilterSpec& spec, const ParameterValues& values, const std::optional<FeatureEllipsoid>& feature) {
     RunOutput out;
+    out.feature = feature;
+    if (feature) out.log.push_back("feature: " + describe_feature(*feature));
+    out.op = *operator_from_values(spec, values, feature.has_value());
+    out.transfer = design_from_values(spec, values, feature ? &*feature : nullptr, out.log, &out.s1_used);
+    log_response(spec, values, out);
+    return out;
+}
+
+void log_filter_report(RunOutput& out, const FilterOptions& options) {
+    for (const auto& w : out.report.warnings) out.log.push_back("warning: " + w);
+    if (out.report.fixed_vertices > 0)
+        out.log.push_back(std::to_string(out.report.fixed_vertices) + " boundary vertices kept in place (fixBoundary)");
+    const FilterReport& r = out.report;
+    out.log.push_back("solver " + solver_used(r) + ": " + std::to_string(r.active_vertices) + " vertices in " +
+                      std::to_string(r.components) + " component(s), " + std::to_string(r.iterations) +
+                      " CG iterations, accurate to " + num(options.tolerance) +
+                      " of the bounding-box diagonal (error bound), relative residual " + num(r.relative_residual) +
+                      "; time " + num(r.seconds_total) + " s (assembly " + num(r.seconds_assembly) + ", factorisation " +
+                      num(r.seconds_factorization) + ", solve " + num(r.seconds_solve) + ")");
+    if (!r.reused.empty()) out.log.push_back("reused from the previous run on this mesh: " + r.reused);
+}
+
+RunOutput run_filter(const FilterSpec& spec, const ParameterValues& values, const RunInput& input) {
     const bool use_selection = spec.kind == FilterKind::Measure || value_of(spec, values, param::use_selection) != 0;
+    std::optional<FeatureEllipsoid> feature;
     if (use_selection) {
         if (input.selected_faces.empty())
             throw Error(spec.kind == FilterKind::Measure
                             ? "no faces are selected: select the feature to measure first"
                             : "useSelection is on but no faces are selected: select the feature (e.g. with the selection"
                               " tools or Conditional Face Selection), or turn useSelection off and give the frequency directly");
-        out.feature = measure_feature(input.points, input.triangles, input.selected_faces);
-        out.log.push_back("feature: " + describe_feature(*out.feature));
+        feature = measure_feature(input.points, input.triangles, input.selected_faces);
     }
     if (spec.kind == FilterKind::Measure) {
+        RunOutput out;
+        out.feature = feature;
+        out.log.push_back("feature: " + describe_feature(*feature));
         const FeatureEllipsoid& e = *out.feature;
         out.log.push_back("feature frequency: sphere-like s = 2/r^2 = " + num(e.frequency(FeatureShape::Sphere)) +
                           ", cylinder-like s = 1/r^2 = " + num(e.frequency(FeatureShape::Cylinder)));
@@ -248,21 +300,16 @@ RunOutput run_filter(const FilterSpec& spec, const ParameterValues& values, cons
         return out;
     }
 
-    FilterOptions options;
-    options.solver = choice_of(spec, values, param::solver) == 1 ? Solver::JacobiPcg : Solver::Factored;
-    options.tolerance = value_of(spec, values, param::tolerance);
-    const double cap = value_of(spec, values, param::max_iterations);
-    if (!(cap >= 1 && cap <= 1e9)) throw Error("maxIterations must be between 1 and 1e9 (got " + num(cap) + ")");
-    options.max_iterations = static_cast<int>(cap);
+    FilterOptions options = filter_options(spec, values);
     options.progress = input.progress;
     options.external_solver = input.external_solver;
     options.complex_factorization = input.complex_factorization;
-    options.fix_boundary = value_of(spec, values, param::fix_boundary) != 0;
 
     // Denoise with nothing selected designs on the mesh: it tries its candidates there and
     // keeps the best-scoring one, already applied to the whole mesh.
+    RunOutput out;
     std::optional<SamplingDenoise> sampled;
-    if (spec.kind == FilterKind::Denoise && !out.feature) {
+    if (spec.kind == FilterKind::Denoise && !feature) {
         const int order = order_of(spec, values);
         sampled = denoise_sampling_noise(input.points, input.triangles, order,
                                          operator_from_values(spec, values, false), options);
@@ -282,17 +329,10 @@ RunOutput run_filter(const FilterSpec& spec, const ParameterValues& values, cons
         out.log.push_back("cutoff sc = " + num(d.cutoff) + " from the sampling: " + d.origin);
         out.log.push_back("design: Butterworth lowpass of order " + std::to_string(order) + ", cutoff sc = " +
                           num(d.cutoff) + ", operator " + operator_name(d.op));
+        log_response(spec, values, out);
     } else {
-        out.op = *operator_from_values(spec, values, out.feature.has_value());
-        out.transfer = design_from_values(spec, values, out.feature ? &*out.feature : nullptr, out.log, &out.s1_used);
+        out = design_run(spec, values, feature);
     }
-    out.log.push_back(out.transfer.describe());
-    const double g1 = spec.kind == FilterKind::SecondOrder ? value_of(spec, values, param::G1) : 0.0;
-    const double s_ref = out.s1_used > 0 ? out.s1_used : 1.0;
-    const ResponseReport response = analyse_response(out.transfer, g1, s_ref * 1e-4, s_ref * 1e4);
-    out.log.push_back("peak |G| = " + num(response.peak_gain) + " at s = " + num(response.peak_frequency) +
-                      "; G(0) = " + num(out.transfer(0)) + ", G(inf) = " + num(out.transfer.at_infinity()));
-    for (const auto& w : response.warnings) out.log.push_back("warning: " + w);
     options.op = out.op;
     const int region = spec.parameter(param::region) ? choice_of(spec, values, param::region) : 0;
     if (region == 0 && sampled) {
@@ -328,17 +368,7 @@ RunOutput run_filter(const FilterSpec& spec, const ParameterValues& values, cons
         out.points = filter_region(region, value_of(spec, values, param::blend_width), input, out.transfer, options,
                                    s_feature, shape_of(spec, values), out.report, out.log);
     }
-    for (const auto& w : out.report.warnings) out.log.push_back("warning: " + w);
-    if (out.report.fixed_vertices > 0)
-        out.log.push_back(std::to_string(out.report.fixed_vertices) + " boundary vertices kept in place (fixBoundary)");
-    const FilterReport& r = out.report;
-    out.log.push_back("solver " + solver_used(r) + ": " + std::to_string(r.active_vertices) + " vertices in " +
-                      std::to_string(r.components) + " component(s), " + std::to_string(r.iterations) +
-                      " CG iterations, accurate to " + num(options.tolerance) +
-                      " of the bounding-box diagonal (error bound), relative residual " + num(r.relative_residual) +
-                      "; time " + num(r.seconds_total) + " s (assembly " + num(r.seconds_assembly) + ", factorisation " +
-                      num(r.seconds_factorization) + ", solve " + num(r.seconds_solve) + ")");
-    if (!r.reused.empty()) out.log.push_back("reused from the previous run on this mesh: " + r.reused);
+    log_filter_report(out, options);
     return out;
 }
 

@@ -71,6 +71,16 @@ TransferFunction design_from_values(const FilterSpec& spec, const ParameterValue
 // without a feature on Automatic, which picks the operator on the mesh.
 std::optional<Operator> operator_from_values(const FilterSpec& spec, const ParameterValues& values, bool has_feature);
 
+// The solver options the values ask for (solver, tolerance, iteration cap, fixBoundary).
+FilterOptions filter_options(const FilterSpec& spec, const ParameterValues& values);
+
+// run_filter's steps before and after the filtering itself, for an engine that filters a
+// mesh no process holds whole (geofilter-mpi reading by slices): the design from the values
+// and the measured feature, with its log lines; then, once `out.report` is in, the log
+// lines that report it.
+RunOutput design_run(const FilterSpec& spec, const ParameterValues& values, const std::optional<FeatureEllipsoid>& feature);
+void log_filter_report(RunOutput& out, const FilterOptions& options);
+
 // Runs the filter. Throws Error (with the message an adapter shows verbatim) on any
 // refusal; the input is never modified.
 RunOutput run_filter(const FilterSpec& spec, const ParameterValues& values, const RunInput& input);

@@ -16,6 +16,7 @@
 #include <csignal>
 #include <iostream>
 #include <new>
+#include <optional>
 #include <sstream>
 
 namespace geofilter::cli {
@@ -132,57 +133,68 @@ int run(const CliOptions& o, const CommandLineTool& tool) {
     const std::string mesh_temporary = o.output.empty() ? "" : outputs.reserve(o.output);
     const std::string plot_temporary = o.plot.empty() ? "" : outputs.reserve(o.plot);
 
-    MeshFile mesh = MeshFile::read(o.input);
-    log.push_back("read " + o.input + ": " + std::to_string(mesh.points().rows()) + " vertices, " +
-                  std::to_string(mesh.triangles().rows()) + " triangles (" + format_name(mesh.format()) + ")");
-    for (const auto& note : mesh.notes()) log.push_back(note);
-    if (o.select_stored && !mesh.has_stored_flags())
-        throw Error("--select-stored: '" + o.input + "' stores no face selection (only PLY can: in MeshLab, export"
-                    " with the Flags box ticked)");
-    if (o.select_stored && mesh.stored_selection().empty() && o.spheres.empty() && o.boxes.empty())
-        throw Error("--select-stored: no face of '" + o.input + "' is selected");
-    if (!o.select_stored && !mesh.stored_selection().empty())
-        log.push_back("the input stores a selection of " + std::to_string(mesh.stored_selection().size()) +
-                      " faces; --select-stored would take the feature from it");
+    // geofilter-mpi may filter the file without this process reading it whole.
+    std::optional<RunOutput> filtered_elsewhere;
+    if (tool.filter_file && !measure) filtered_elsewhere = tool.filter_file(o, values, mesh_temporary, log);
+    RunOutput out;
+    std::optional<MeshFile> mesh;
+    std::vector<int> selected;
+    if (filtered_elsewhere) {
+        out = std::move(*filtered_elsewhere);
+        if (out.feature) feature = {true, out.feature->radius};
+    } else {
+        mesh.emplace(MeshFile::read(o.input));
+        log.push_back("read " + o.input + ": " + std::to_string(mesh->points().rows()) + " vertices, " +
+                      std::to_string(mesh->triangles().rows()) + " triangles (" + format_name(mesh->format()) + ")");
+        for (const auto& note : mesh->notes()) log.push_back(note);
+        if (o.select_stored && !mesh->has_stored_flags())
+            throw Error("--select-stored: '" + o.input + "' stores no face selection (only PLY can: in MeshLab, export"
+                        " with the Flags box ticked)");
+        if (o.select_stored && mesh->stored_selection().empty() && o.spheres.empty() && o.boxes.empty())
+            throw Error("--select-stored: no face of '" + o.input + "' is selected");
+        if (!o.select_stored && !mesh->stored_selection().empty())
+            log.push_back("the input stores a selection of " + std::to_string(mesh->stored_selection().size()) +
+                          " faces; --select-stored would take the feature from it");
 
-    const std::vector<int> selected =
-        o.selects_region()
-            ? select_faces(mesh.points(), mesh.triangles(), o, o.select_stored ? mesh.stored_selection() : std::vector<int>{}, log)
-            : std::vector<int>{};
+        selected =
+            o.selects_region()
+                ? select_faces(mesh->points(), mesh->triangles(), o, o.select_stored ? mesh->stored_selection() : std::vector<int>{}, log)
+                : std::vector<int>{};
 
-    ProgressBar bar(!o.quiet);
-    std::signal(SIGINT, on_interrupt);
-    const ProgressCallback progress = [&bar](double fraction, const std::string& stage) {
-        bar.update(fraction, stage);
-        return interrupted == 0;
-    };
-    if (spec.parameter(param::region) && values.at(param::region) == 1 && !o.selects_region())
-        throw Error("--region selected filters only the selected faces: give them with --select-sphere, --select-box"
-                    " or --select-stored");
-    const RunOutput out =
-        run_filter(spec, values, RunInput{mesh.points(), mesh.triangles(), selected, progress, &mesh.vertex_quality(),
-                                          nullptr, tool.external_solver, tool.complex_factorization});
-    bar.clear();
-    if (interrupted) throw Error("interrupted");
-    if (out.feature) feature = {true, out.feature->radius};
+        ProgressBar bar(!o.quiet);
+        std::signal(SIGINT, on_interrupt);
+        const ProgressCallback progress = [&bar](double fraction, const std::string& stage) {
+            bar.update(fraction, stage);
+            return interrupted == 0;
+        };
+        if (spec.parameter(param::region) && values.at(param::region) == 1 && !o.selects_region())
+            throw Error("--region selected filters only the selected faces: give them with --select-sphere, --select-box"
+                        " or --select-stored");
+        out =
+            run_filter(spec, values, RunInput{mesh->points(), mesh->triangles(), selected, progress, &mesh->vertex_quality(),
+                                              nullptr, tool.external_solver, tool.complex_factorization});
+        bar.clear();
+        if (interrupted) throw Error("interrupted");
+        if (out.feature) feature = {true, out.feature->radius};
 
-    std::ostringstream summary;
-    if (measure) {
-        if (!mesh_temporary.empty()) write_mesh(mesh_temporary, *out.ellipsoid_mesh);
-        outputs.commit();
-        if (!o.quiet) {
-            for (const auto& line : log) std::cerr << program << ": " << line << '\n';
-            for (const auto& line : out.log) std::cout << line << '\n';
+        std::ostringstream summary;
+        if (measure) {
+            if (!mesh_temporary.empty()) write_mesh(mesh_temporary, *out.ellipsoid_mesh);
+            outputs.commit();
+            if (!o.quiet) {
+                for (const auto& line : log) std::cerr << program << ": " << line << '\n';
+                for (const auto& line : out.log) std::cout << line << '\n';
+            }
+            // The summary is the measurement asked for: printed even with --quiet.
+            const FeatureEllipsoid& e = *out.feature;
+            // 10 digits: the measurement is the result here, and a script may compare it.
+            summary << program << ": measure: r = " << num(e.radius, 10) << ": sphere-like s = 2/r^2 = "
+                    << num(e.frequency(FeatureShape::Sphere), 10) << ", cylinder-like s = 1/r^2 = "
+                    << num(e.frequency(FeatureShape::Cylinder), 10) << " (" << e.face_count << " faces)";
+            if (!o.output.empty()) summary << "; ellipsoid written to " << o.output;
+            std::cout << summary.str() << std::endl;
+            return 0;
         }
-        // The summary is the measurement asked for: printed even with --quiet.
-        const FeatureEllipsoid& e = *out.feature;
-        // 10 digits: the measurement is the result here, and a script may compare it.
-        summary << program << ": measure: r = " << num(e.radius, 10) << ": sphere-like s = 2/r^2 = "
-                << num(e.frequency(FeatureShape::Sphere), 10) << ", cylinder-like s = 1/r^2 = "
-                << num(e.frequency(FeatureShape::Cylinder), 10) << " (" << e.face_count << " faces)";
-        if (!o.output.empty()) summary << "; ellipsoid written to " << o.output;
-        std::cout << summary.str() << std::endl;
-        return 0;
     }
 
     for (Eigen::Index i = 0; i < out.points.rows(); ++i)
@@ -191,7 +203,7 @@ int run(const CliOptions& o, const CommandLineTool& tool) {
     std::string design;
     const TransferPlot plot = make_plot(spec, values, out, feature, design);
     if (!plot_temporary.empty()) write_transfer_plot(plot_temporary, plot);
-    mesh.write(mesh_temporary, out.points, selected);
+    if (mesh) mesh->write(mesh_temporary, out.points, selected);
     if (interrupted) throw Error("interrupted");
     outputs.commit();
     log.insert(log.end(), out.log.begin(), out.log.end());

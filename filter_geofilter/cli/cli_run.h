@@ -3,8 +3,10 @@
 #pragma once
 
 #include "cli_options.h"
+#include "run_filter.h"
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -18,6 +20,13 @@ struct CommandLineTool {
     ComplexShiftedFactorization complex_factorization;
     // Refuses (throws Error) options the tool cannot run, before any file is read.
     std::function<void(const CliOptions&)> check_options;
+    // Filters INPUT into `output` (the temporary name the tool renames on success) without
+    // this process reading the mesh whole (geofilter-mpi's reading by slices); `values` are
+    // the parameters after --radius. Nothing, with the reason in `log`, when it does not take
+    // these options or this file: the mesh is then read and filtered here.
+    std::function<std::optional<RunOutput>(const CliOptions& options, const ParameterValues& values, const std::string& output,
+                                           std::vector<std::string>& log)>
+        filter_file;
 };
 
 // Parses `args` (without the program name), runs, prints the log, or one error line:

@@ -20,65 +20,65 @@ double feature_radius(const Eigen::Vector3d& radii) {
     return wide_weight * 0.5 * (r1 + r2) + (1 - wide_weight) * 0.5 * (r2 + r3);
 }
 
-FeatureEllipsoid measure_feature(const Points& points, const Triangles& triangles, const std::vector<int>& selected_faces) {
-    if (selected_faces.empty())
-        throw Error("no faces are selected: select the feature (a bump, a nose, an ear) before measuring it,"
-                    " or turn off useSelection and give s1 directly");
-
-    // Moments about a point of the selection, not the origin: on a georeferenced scan
-    // (coordinates ~1e6) raw second moments of a 5 cm feature would cancel to rounding noise.
-    Eigen::Vector3d origin = Eigen::Vector3d::Zero();
-    bool have_origin = false;
-    Eigen::Vector3d first_moment = Eigen::Vector3d::Zero();
-    Eigen::Matrix3d second_moment = Eigen::Matrix3d::Zero();
-    double area = 0;
-    for (int f : selected_faces) {
+SelectionMoments selection_moments(const Points& points, const Triangles& triangles, const std::vector<int>& faces,
+                                   const Eigen::Vector3d& origin) {
+    SelectionMoments m;
+    for (int f : faces) {
         if (f < 0 || f >= triangles.rows()) throw Error("selected face index " + std::to_string(f) + " is out of range");
         Eigen::Vector3d v[3];
         for (int k = 0; k < 3; ++k) {
             const int i = triangles(f, k);
             if (i < 0 || i >= points.rows()) throw Error("face " + std::to_string(f) + " refers to a missing vertex");
-            if (!have_origin) {
-                origin = points.row(i).transpose();
-                have_origin = true;
-            }
             v[k] = points.row(i).transpose() - origin;
         }
         const double a = 0.5 * (v[1] - v[0]).cross(v[2] - v[0]).norm();
         if (!std::isfinite(a)) throw Error("a selected face has non-finite coordinates");
         const Eigen::Vector3d sum = v[0] + v[1] + v[2];
         // Integral of x x^T over a triangle: A/12 (sum_i v_i v_i^T + s s^T), s = v0 + v1 + v2.
-        second_moment += a / 12.0 * (v[0] * v[0].transpose() + v[1] * v[1].transpose() + v[2] * v[2].transpose() +
-                                     sum * sum.transpose());
-        first_moment += a / 3.0 * sum;
-        area += a;
+        m.second += a / 12.0 * (v[0] * v[0].transpose() + v[1] * v[1].transpose() + v[2] * v[2].transpose() +
+                                sum * sum.transpose());
+        m.first += a / 3.0 * sum;
+        m.area += a;
+        ++m.face_count;
     }
-    if (!(area > 0))
-        throw Error("the selected faces have zero total area: the feature size is undefined; select a larger region");
+    return m;
+}
 
-    const Eigen::Vector3d local_mean = first_moment / area;
-    const Eigen::Matrix3d covariance = second_moment / area - local_mean * local_mean.transpose();
+FeatureFrame feature_frame(const SelectionMoments& total) {
+    if (total.face_count == 0)
+        throw Error("no faces are selected: select the feature (a bump, a nose, an ear) before measuring it,"
+                    " or turn off useSelection and give s1 directly");
+    if (!(total.area > 0))
+        throw Error("the selected faces have zero total area: the feature size is undefined; select a larger region");
+    FeatureFrame frame;
+    frame.mean = total.first / total.area;
+    const Eigen::Matrix3d covariance = total.second / total.area - frame.mean * frame.mean.transpose();
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(covariance);
     // Eigen sorts ascending; we want the largest spread first.
-    Eigen::Matrix3d axes;
-    for (int k = 0; k < 3; ++k) axes.col(k) = eig.eigenvectors().col(2 - k);
-    if (axes.determinant() < 0) axes.col(2) = -axes.col(2);
+    for (int k = 0; k < 3; ++k) frame.axes.col(k) = eig.eigenvectors().col(2 - k);
+    if (frame.axes.determinant() < 0) frame.axes.col(2) = -frame.axes.col(2);
+    return frame;
+}
 
-    Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = Eigen::Vector3d::Constant(-INFINITY);
-    for (int f : selected_faces)
+void extend_in_frame(const FeatureFrame& frame, const Eigen::Vector3d& origin, const Points& points,
+                     const Triangles& triangles, const std::vector<int>& faces, Eigen::Vector3d& low, Eigen::Vector3d& high) {
+    for (int f : faces)
         for (int k = 0; k < 3; ++k) {
             const Eigen::Vector3d local =
-                axes.transpose() * ((points.row(triangles(f, k)).transpose() - origin) - local_mean);
-            lo = lo.cwiseMin(local);
-            hi = hi.cwiseMax(local);
+                frame.axes.transpose() * ((points.row(triangles(f, k)).transpose() - origin) - frame.mean);
+            low = low.cwiseMin(local);
+            high = high.cwiseMax(local);
         }
+}
 
+FeatureEllipsoid ellipsoid_in_frame(const SelectionMoments& total, const FeatureFrame& frame, const Eigen::Vector3d& origin,
+                                    const Eigen::Vector3d& low, const Eigen::Vector3d& high) {
     FeatureEllipsoid e;
-    e.axes = axes;
-    e.center = origin + (local_mean + axes * (0.5 * (lo + hi)));
-    e.radii = 0.5 * (hi - lo);
-    e.area = area;
-    e.face_count = static_cast<int>(selected_faces.size());
+    e.axes = frame.axes;
+    e.center = origin + (frame.mean + frame.axes * (0.5 * (low + high)));
+    e.radii = 0.5 * (high - low);
+    e.area = total.area;
+    e.face_count = total.face_count;
     // PCA can order two nearly equal spreads either way; the box extents decide the order.
     for (int i = 0; i < 2; ++i)
         for (int j = 0; j < 2 - i; ++j)
@@ -89,6 +89,22 @@ FeatureEllipsoid measure_feature(const Points& points, const Triangles& triangle
     e.radius = feature_radius(e.radii);
     if (!(e.radius > 0)) throw Error("the selected faces are degenerate (all on one line): no feature radius");
     return e;
+}
+
+FeatureEllipsoid measure_feature(const Points& points, const Triangles& triangles, const std::vector<int>& selected_faces) {
+    Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+    if (!selected_faces.empty()) {
+        const int f = selected_faces.front();
+        if (f < 0 || f >= triangles.rows()) throw Error("selected face index " + std::to_string(f) + " is out of range");
+        const int i = triangles(f, 0);
+        if (i < 0 || i >= points.rows()) throw Error("face " + std::to_string(f) + " refers to a missing vertex");
+        origin = points.row(i).transpose();
+    }
+    const SelectionMoments moments = selection_moments(points, triangles, selected_faces, origin);
+    const FeatureFrame frame = feature_frame(moments);
+    Eigen::Vector3d low = Eigen::Vector3d::Constant(INFINITY), high = Eigen::Vector3d::Constant(-INFINITY);
+    extend_in_frame(frame, origin, points, triangles, selected_faces, low, high);
+    return ellipsoid_in_frame(moments, frame, origin, low, high);
 }
 
 } // namespace geofilter

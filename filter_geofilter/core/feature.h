@@ -37,6 +37,30 @@ struct FeatureEllipsoid {
 // Refuses an empty selection, a selection of zero area and out-of-range face indices.
 FeatureEllipsoid measure_feature(const Points& points, const Triangles& triangles, const std::vector<int>& selected_faces);
 
+// measure_feature in steps, for a selection split over several parts (geofilter-mpi's ranks):
+// the moments of each part add up, the frame follows from their sum, the extents in that
+// frame combine by min and max.
+struct SelectionMoments {
+    double area = 0;
+    Eigen::Vector3d first = Eigen::Vector3d::Zero();   // integral of (x - origin)
+    Eigen::Matrix3d second = Eigen::Matrix3d::Zero();  // integral of (x - origin)(x - origin)^T
+    int face_count = 0;
+};
+// Moments about `origin`, which should lie near the selection (on a georeferenced scan,
+// coordinates ~1e6, moments about 0 of a 5 cm feature cancel to rounding noise).
+SelectionMoments selection_moments(const Points& points, const Triangles& triangles, const std::vector<int>& faces,
+                                   const Eigen::Vector3d& origin);
+struct FeatureFrame {
+    Eigen::Matrix3d axes;  // principal directions of the covariance, largest spread first
+    Eigen::Vector3d mean;  // area-weighted centroid, relative to the moments' origin
+};
+FeatureFrame feature_frame(const SelectionMoments& total);
+// Widens [low, high] to the selected faces' vertices, in the frame's coordinates.
+void extend_in_frame(const FeatureFrame& frame, const Eigen::Vector3d& origin, const Points& points,
+                     const Triangles& triangles, const std::vector<int>& faces, Eigen::Vector3d& low, Eigen::Vector3d& high);
+FeatureEllipsoid ellipsoid_in_frame(const SelectionMoments& total, const FeatureFrame& frame, const Eigen::Vector3d& origin,
+                                    const Eigen::Vector3d& low, const Eigen::Vector3d& high);
+
 // With radii r1 >= r2 >= r3 >= 0: w (r1 + r2)/2 + (1 - w)(r2 + r3)/2, where
 // w = ln(r2/r3) / (ln(r1/r2) + ln(r2/r3)) (1/2 when both logarithms vanish, 1 when r3 = 0).
 // Continuous in the radii; equals r on a sphere (r, r, r), a cap (r, r, h) and a tube (L, r, r).

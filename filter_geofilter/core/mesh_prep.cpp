@@ -5,6 +5,15 @@
 
 namespace geofilter {
 
+bool usable_face(const Eigen::RowVector3d& a, const Eigen::RowVector3d& b, const Eigen::RowVector3d& c, long i, long j,
+                 long k) {
+    const double twice_area = (b - a).cross(c - a).norm();
+    const double longest2 = std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
+    // Relative test, so that the verdict does not depend on the unit of length. Below this
+    // the cotangents are dominated by rounding error.
+    return twice_area > 1e-12 * longest2 && i != j && j != k && i != k;
+}
+
 PreparedMesh prepare_mesh(const Points& points, const Triangles& triangles) {
     const Eigen::Index n = points.rows();
     if (n == 0) throw Error("the mesh has no vertices");
@@ -27,13 +36,8 @@ PreparedMesh prepare_mesh(const Points& points, const Triangles& triangles) {
                 throw Error("face " + std::to_string(f) + " refers to vertex " + std::to_string(v) + ", but the mesh has only " +
                             std::to_string(n) + " vertices");
         }
-        const Eigen::RowVector3d a = points.row(triangles(f, 0)), b = points.row(triangles(f, 1)), c = points.row(triangles(f, 2));
-        const double twice_area = (b - a).cross(c - a).norm();
-        const double longest2 = std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
-        // Relative test, so that the verdict does not depend on the unit of length. Below this
-        // the cotangents are dominated by rounding error.
-        if (!(twice_area > 1e-12 * longest2) || triangles(f, 0) == triangles(f, 1) || triangles(f, 1) == triangles(f, 2) ||
-            triangles(f, 0) == triangles(f, 2)) {
+        if (!usable_face(points.row(triangles(f, 0)), points.row(triangles(f, 1)), points.row(triangles(f, 2)),
+                         triangles(f, 0), triangles(f, 1), triangles(f, 2))) {
             ++out.degenerate_faces;
             continue;
         }

@@ -21,6 +21,11 @@ struct PreparedMesh {
     std::vector<std::string> warnings;
 };
 
+// Whether the cotangent weights of triangle (a, b, c), with corner indices i, j, k, are
+// defined: three distinct corners and an area not lost to rounding against its longest edge.
+bool usable_face(const Eigen::RowVector3d& a, const Eigen::RowVector3d& b, const Eigen::RowVector3d& c, long i, long j,
+                 long k);
+
 // Refuses: no vertices, no faces, out-of-range indices, non-finite coordinates, and a mesh
 // whose every face is degenerate. Repairs with a warning: zero-area faces are skipped and
 // vertices left without a face stay where they are.

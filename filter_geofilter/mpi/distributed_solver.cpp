@@ -1,6 +1,7 @@
 #include "distributed_solver.h"
 
 #include "distributed_complex_ldlt.h"
+#include "distributed_pipeline.h"
 
 #include "core/cascade.h"
 #include "core/exact_pair.h"
@@ -24,7 +25,7 @@ namespace geofilter::mpi {
 
 namespace {
 
-enum Command : int { finish = 0, solve = 1 };
+enum Command : int { finish = 0, solve = 1, filter_file = 2 };
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -39,17 +40,7 @@ void check(PetscErrorCode code, const char* what) {
     throw Error(std::string("PETSc failed while ") + what + (text ? std::string(": ") + text : std::string()));
 }
 
-// Every scalar of the problem the other ranks need, in one broadcast: the pole solver, the
-// error budget and iteration cap, and the transfer function.
-struct Header {
-    PoleSolver pole_solver = PoleSolver::Direct;
-    PetscInt vertices = 0;
-    double allowed_error = 0;
-    int max_iterations = 0;
-    TransferFunction g;
-};
-
-std::vector<double> pack(const Header& h) {
+std::vector<double> pack(const DistributedProblem& h) {
     std::vector<double> d = {double(int(h.pole_solver)), double(h.vertices), h.allowed_error, double(h.max_iterations),
                              h.g.gain, double(h.g.numerator.size())};
     for (const auto& factor : h.g.numerator) {
@@ -63,10 +54,10 @@ std::vector<double> pack(const Header& h) {
     return d;
 }
 
-Header unpack(const std::vector<double>& d) {
+DistributedProblem unpack(const std::vector<double>& d) {
     size_t k = 0;
     auto next = [&]() { return d.at(k++); };
-    Header h;
+    DistributedProblem h;
     h.pole_solver = PoleSolver(int(next()));
     h.vertices = PetscInt(next());
     h.allowed_error = next();
@@ -90,7 +81,7 @@ Header unpack(const std::vector<double>& d) {
     return h;
 }
 
-Header broadcast_header(MPI_Comm comm, const Header* root_header) {
+DistributedProblem broadcast_header(MPI_Comm comm, const DistributedProblem* root_header) {
     std::vector<double> packed = root_header ? pack(*root_header) : std::vector<double>{};
     unsigned long size = packed.size();
     MPI_Bcast(&size, 1, MPI_UNSIGNED_LONG, 0, comm);
@@ -284,7 +275,7 @@ class DistributedStages : public detail::PoleGroupSolver {
 public:
     // Takes `kt` over (and nulls the caller's handle): it is shifted in place for each
     // factorisation rather than copied, one matrix fewer per rank while the factor is held.
-    DistributedStages(MPI_Comm comm, Mat& kt, const Header& header, FilterReport& report)
+    DistributedStages(MPI_Comm comm, Mat& kt, const DistributedProblem& header, FilterReport& report)
         : comm_(comm), header_(header), report_(report), shifted_(kt) {
         kt = nullptr;
         try {
@@ -569,7 +560,7 @@ public:
 private:
 
     MPI_Comm comm_;
-    const Header& header_;
+    const DistributedProblem& header_;
     FilterReport& report_;
     Mat shifted_;               // Kt + applied_shift_ I
     double applied_shift_ = 0;
@@ -579,13 +570,58 @@ private:
     detail::ExactPairState exact_;  // the complex LDL^T, and why pairs went back to CG if it failed
 };
 
+} // namespace
+
+void check_petsc(PetscErrorCode code, const char* what) { check(code, what); }
+
+Eigen::MatrixXd filter_rows(MPI_Comm comm, Mat& kt, const Eigen::MatrixXd& q, const DistributedProblem& problem,
+                            FilterReport& report, std::string* factor_note) {
+    int ranks = 1;
+    MPI_Comm_size(comm, &ranks);
+    Eigen::MatrixXd solved_local;
+    try {
+        PetscReal spectrum_max = 0;
+        check(MatNorm(kt, NORM_INFINITY, &spectrum_max), "bounding Kt's spectrum");  // Gershgorin, as the core
+        DistributedStages stages(comm, kt, problem, report);
+        solved_local = detail::apply_factored_transfer(problem.g, q, problem.allowed_error, spectrum_max, stages);
+        report.external_solver = (problem.pole_solver == PoleSolver::Multigrid
+                                      ? "CG with hypre BoomerAMG (multigrid, no factor)"
+                                      : "factored (MUMPS sparse Cholesky)") +
+                                 std::string(" over ") + std::to_string(ranks) + " MPI rank(s)";
+        if (factor_note) {
+            std::string& line = *factor_note;
+            if (stages.factor_entries > 0)
+                line += "; MUMPS factor " + format_number(stages.factor_entries, 4) + " entries (" +
+                        format_number(stages.factor_entries / double(problem.vertices), 4) + " per vertex), factorisation memory " +
+                        format_number(stages.factor_largest_mb, 4) + " MB on the largest rank, " +
+                        format_number(stages.factor_total_mb, 4) + " MB in all";
+            if (stages.complex_size.entries > 0)
+                line += "; MUMPS complex LDL^T " + format_number(stages.complex_size.entries, 4) + " entries (" +
+                        format_number(stages.complex_size.entries / double(problem.vertices), 4) +
+                        " per vertex), factorisation memory " +
+                        format_number(stages.complex_size.megabytes_largest_process, 4) + " MB on the largest rank, " +
+                        format_number(stages.complex_size.megabytes_total, 4) + " MB in all";
+            if (stages.workspace_retries > 0)
+                line += " (after " + std::to_string(stages.workspace_retries) +
+                        " retry with a larger workspace: MUMPS's estimate fell short, INFOG(1) = -9 or -8)";
+        }
+    } catch (...) {
+        MatDestroy(&kt);
+        throw;
+    }
+    MatDestroy(&kt);
+    return solved_local;
+}
+
+namespace {
+
 // Collective: every rank's part of one solve. Rank 0 brings the problem and gets the result
 // in the core's vertex order; the others pass nulls and get an empty matrix.
 Eigen::MatrixXd solve_collectively(MPI_Comm comm, FactoredProblem* problem, const EngineOptions* options,
                                    FilterReport& report) {
     const Ranks ranks(comm);
     const auto t0 = std::chrono::steady_clock::now();
-    Header root_header;
+    DistributedProblem root_header;
     SparseMatrix kt;
     Eigen::VectorXd sqrt_mass;
     Eigen::MatrixXd q;
@@ -604,7 +640,7 @@ Eigen::MatrixXd solve_collectively(MPI_Comm comm, FactoredProblem* problem, cons
         problem->laplacian.mass.resize(0);
         problem->coordinates.resize(0, 0);
     }
-    const Header header = broadcast_header(comm, problem ? &root_header : nullptr);
+    const DistributedProblem header = broadcast_header(comm, problem ? &root_header : nullptr);
     const std::vector<int> owner = partition_vertices(comm, problem ? &kt : nullptr, header.vertices);
     std::vector<int> order, row_counts;
     long coupling_entries = 0;
@@ -623,43 +659,16 @@ Eigen::MatrixXd solve_collectively(MPI_Comm comm, FactoredProblem* problem, cons
     malloc_trim(0);
     report.seconds_assembly += seconds_since(t0);
 
-    Eigen::MatrixXd solved_local;
-    try {
-        PetscReal spectrum_max = 0;
-        check(MatNorm(local.kt, NORM_INFINITY, &spectrum_max), "bounding Kt's spectrum");  // Gershgorin, as the core
-        DistributedStages stages(engine.handle, local.kt, header, report);
-        solved_local = detail::apply_factored_transfer(header.g, local.q, header.allowed_error, spectrum_max, stages);
-        report.external_solver = (header.pole_solver == PoleSolver::Multigrid
-                                      ? "CG with hypre BoomerAMG (multigrid, no factor)"
-                                      : "factored (MUMPS sparse Cholesky)") +
-                                 std::string(" over ") + std::to_string(ranks.size) + " MPI rank(s)";
-        if (options && options->log) {
-            std::string line = "distributed over " + std::to_string(ranks.size) + " rank(s)" +
-                               (ranks.size > 1 ? " (PT-Scotch partition)" : "") + ": rows per rank";
-            for (int c : row_counts) line += " " + std::to_string(c);
-            line += "; " + format_number(100.0 * double(coupling_entries) / double(std::max(kt_entries, 1L)), 3) +
-                    "% of Kt's entries couple ranks";
-            if (stages.factor_entries > 0)
-                line += "; MUMPS factor " + format_number(stages.factor_entries, 4) + " entries (" +
-                        format_number(stages.factor_entries / double(header.vertices), 4) + " per vertex), factorisation memory " +
-                        format_number(stages.factor_largest_mb, 4) + " MB on the largest rank, " +
-                        format_number(stages.factor_total_mb, 4) + " MB in all";
-            if (stages.complex_size.entries > 0)
-                line += "; MUMPS complex LDL^T " + format_number(stages.complex_size.entries, 4) + " entries (" +
-                        format_number(stages.complex_size.entries / double(header.vertices), 4) +
-                        " per vertex), factorisation memory " +
-                        format_number(stages.complex_size.megabytes_largest_process, 4) + " MB on the largest rank, " +
-                        format_number(stages.complex_size.megabytes_total, 4) + " MB in all";
-            if (stages.workspace_retries > 0)
-                line += " (after " + std::to_string(stages.workspace_retries) +
-                        " retry with a larger workspace: MUMPS's estimate fell short, INFOG(1) = -9 or -8)";
-            options->log->push_back(line);
-        }
-    } catch (...) {
-        MatDestroy(&local.kt);
-        throw;
+    std::string factor_note;
+    const Eigen::MatrixXd solved_local = filter_rows(engine.handle, local.kt, local.q, header, report, &factor_note);
+    if (options && options->log) {
+        std::string line = "distributed over " + std::to_string(ranks.size) + " rank(s)" +
+                           (ranks.size > 1 ? " (PT-Scotch partition)" : "") + ": rows per rank";
+        for (int c : row_counts) line += " " + std::to_string(c);
+        line += "; " + format_number(100.0 * double(coupling_entries) / double(std::max(kt_entries, 1L)), 3) +
+                "% of Kt's entries couple ranks" + factor_note;
+        options->log->push_back(line);
     }
-    MatDestroy(&local.kt);
 
     // Back to rank 0, in the core's order, out of the q frame.
     Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> rows = solved_local;
@@ -706,6 +715,14 @@ int serve_solves(MPI_Comm comm) {
         int command[2];
         MPI_Bcast(command, 2, MPI_INT, 0, comm);
         if (command[0] == finish) return command[1];
+        if (command[0] == filter_file) {
+            try {
+                serve_file_filter(comm);
+            } catch (const Error&) {
+                // Rank 0 raised the same error and reports it once.
+            }
+            continue;
+        }
         FilterReport unused;
         try {
             solve_collectively(comm, nullptr, nullptr, unused);
@@ -713,6 +730,11 @@ int serve_solves(MPI_Comm comm) {
             // Rank 0 raised the same error and reports it once.
         }
     }
+}
+
+void start_file_filter(MPI_Comm comm) {
+    int command[2] = {filter_file, 0};
+    MPI_Bcast(command, 2, MPI_INT, 0, comm);
 }
 
 void finish_serving(MPI_Comm comm, int exit_status) {

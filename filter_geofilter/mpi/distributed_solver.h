@@ -12,6 +12,7 @@
 #include "core/filter.h"
 
 #include <mpi.h>
+#include <petscmat.h>
 
 #include <string>
 #include <vector>
@@ -32,6 +33,25 @@ struct EngineOptions {
     std::vector<std::string>* log = nullptr;
 };
 
+// Every scalar of a distributed solve, the same on every rank: the pole solver, the size, the
+// error budget and iteration cap, and the transfer function.
+struct DistributedProblem {
+    PoleSolver pole_solver = PoleSolver::Direct;
+    PetscInt vertices = 0;
+    double allowed_error = 0;
+    int max_iterations = 0;
+    TransferFunction g;
+};
+
+// Throws Error naming `what` when a PETSc call failed (PETSc reports through return codes).
+void check_petsc(PetscErrorCode code, const char* what);
+
+// Collective: G(Kt) q, to the problem's error bound, for the rows of Kt (a matrix on `comm`,
+// taken over and destroyed) and of q this rank holds. Adds to `report`; appends what MUMPS
+// measured, in words, to `factor_note`.
+Eigen::MatrixXd filter_rows(MPI_Comm comm, Mat& kt, const Eigen::MatrixXd& q, const DistributedProblem& problem,
+                            FilterReport& report, std::string* factor_note);
+
 // On rank 0: wakes the other ranks and solves `problem` with them (`options` reach them
 // too). Throws Error as the core's solver would (the same messages); every rank sees the
 // same failure.
@@ -44,6 +64,9 @@ int serve_solves(MPI_Comm comm);
 
 // This process's peak resident memory so far (VmHWM), in bytes; 0 when unknown.
 double peak_resident_bytes();
+
+// On rank 0: wakes the other ranks to filter a file with it (distributed_pipeline.h).
+void start_file_filter(MPI_Comm comm);
 
 // On rank 0: releases the other ranks with the exit status of the run.
 void finish_serving(MPI_Comm comm, int exit_status);

@@ -1,9 +1,12 @@
 // geofilter-mpi: `geofilter` under mpirun. Rank 0 runs geofilter's command line (the same
-// presets, options, defaults, messages and files); the factored solve, where the time and
-// memory go, runs on every rank (distributed_solver.cpp). Other ranks print nothing, so a
+// presets, options, defaults, messages and files). A binary PLY filtered whole on the
+// cotangent Laplacian is read, assembled and written by slices on every rank
+// (distributed_pipeline.cpp); otherwise rank 0 reads and assembles the mesh, and the factored
+// solve, where the time and memory go, runs on every rank (distributed_solver.cpp). Other ranks print nothing, so a
 // refusal is one message, and every rank exits with rank 0's status.
 
 #include "cli_run.h"
+#include "distributed_pipeline.h"
 #include "distributed_solver.h"
 
 #include <petscsys.h>
@@ -94,6 +97,10 @@ int main(int argc, char** argv) {
             engine.log = &engine_log;
             tool.external_solver = [&](FactoredProblem& problem, FilterReport& report) {
                 return mpi::solve_on_all_ranks(comm, problem, report, engine);
+            };
+            tool.filter_file = [&](const cli::CliOptions& o, const ParameterValues& values, const std::string& output,
+                                   std::vector<std::string>& log) {
+                return mpi::filter_file_on_all_ranks(comm, o, values, output, engine, log);
             };
             status = cli::run_command_line(args, tool);
             if (status == 0 && has_flag(args, "-h", "--help"))
