@@ -35,3 +35,50 @@ def run_mpi(ranks, *args, timeout=300):
 def error_lines(p):
     """The tool's own error lines (mpirun's notices about a non-zero exit are not ours)."""
     return [l for l in p.stderr.splitlines() if l.startswith("geofilter-mpi: error:")]
+
+
+def write_binary_ply(path, vertices, faces, double=False, normals=False, quality=None, polygons=()):
+    """A binary little-endian PLY of `faces` (triangles), as scanners and MeshLab write them:
+    what geofilter-mpi reads by slices. `normals` adds nx, ny, nz (zeros: the input's, made
+    stale by the filter), `quality` a per-vertex float; `polygons` are appended as faces of
+    more corners."""
+    import numpy as np
+    v = np.asarray(vertices, float)
+    scalar = "<f8" if double else "<f4"
+    fields = [("x", scalar), ("y", scalar), ("z", scalar)]
+    if normals:
+        fields += [("nx", "<f4"), ("ny", "<f4"), ("nz", "<f4")]
+    if quality is not None:
+        fields.append(("quality", "<f4"))
+    records = np.zeros(len(v), dtype=fields)
+    for k, name in enumerate("xyz"):
+        records[name] = v[:, k]
+    if quality is not None:
+        records["quality"] = quality
+    names = {"<f8": "double", "<f4": "float"}
+    header = ["ply", "format binary_little_endian 1.0", "comment written by the geofilter-mpi tests",
+              f"element vertex {len(v)}"]
+    header += [f"property {names[t]} {n}" for n, t in fields]
+    header += [f"element face {len(faces) + len(polygons)}", "property list uchar int vertex_indices", "end_header"]
+    triangles = np.zeros(len(faces), dtype=[("n", "u1"), ("i", "<i4", (3,))])
+    triangles["n"] = 3
+    triangles["i"] = np.asarray(faces)
+    with open(path, "wb") as out:
+        out.write(("\n".join(header) + "\n").encode("ascii"))
+        out.write(records.tobytes())
+        out.write(triangles.tobytes())
+        for polygon in polygons:
+            out.write(np.uint8(len(polygon)).tobytes() + np.asarray(polygon, "<i4").tobytes())
+
+
+def real_mesh_as_binary_ply(directory):
+    """The real mesh as a binary PLY of float positions (what geofilter-mpi reads by slices)."""
+    path = os.path.join(directory, "bunny00_binary.ply")
+    mesh = cli_harness.read_mesh(real_mesh())
+    write_binary_ply(path, mesh.vertices, mesh.faces)
+    return path
+
+
+def read_by_slices(p):
+    """Whether geofilter-mpi read the file by slices on every rank (its log says which path)."""
+    return "geofilter-mpi: read by slices:" in p.stderr

@@ -137,3 +137,35 @@ TEST(Feature, GeoreferencedCoordinatesGiveTheSameFrequency) {
                 1e-6 * local.frequency(FeatureShape::Sphere));
     EXPECT_LT((utm.center - Eigen::Vector3d(5e5, 4e6, 1e2) - local.center).norm(), 1e-6 * r);
 }
+
+TEST(Feature, ASelectionSplitInPartsMeasuresAsAWhole) {
+    // geofilter-mpi's ranks each hold part of the selection: their moments add up and their
+    // extents combine. A cap of radius 0.5 (s = 2/r^2 = 8 on a whole sphere), about another
+    // origin than the whole measurement's, in three interleaved parts.
+    Mesh s = icosphere(3, 0.5);
+    const std::vector<int> cap = upper_half_faces(s);
+    move(s, {1, -1, 2}, 0.4, {3, 1, -2});
+    const FeatureEllipsoid whole = measure_feature(s.points, s.triangles, cap);
+    std::vector<int> parts[3];
+    for (size_t i = 0; i < cap.size(); ++i) parts[i % 3].push_back(cap[i]);
+    const Eigen::Vector3d origin = s.points.row(s.triangles(cap.back(), 2)).transpose();
+    SelectionMoments total;
+    for (const auto& part : parts) {
+        const SelectionMoments m = selection_moments(s.points, s.triangles, part, origin);
+        total.area += m.area;
+        total.first += m.first;
+        total.second += m.second;
+        total.face_count += m.face_count;
+    }
+    const FeatureFrame frame = feature_frame(total);
+    Eigen::Vector3d low = Eigen::Vector3d::Constant(INFINITY), high = Eigen::Vector3d::Constant(-INFINITY);
+    for (const auto& part : parts) extend_in_frame(frame, origin, s.points, s.triangles, part, low, high);
+    const FeatureEllipsoid split = ellipsoid_in_frame(total, frame, origin, low, high);
+    EXPECT_EQ(split.face_count, static_cast<int>(cap.size()));
+    EXPECT_NEAR(split.area, whole.area, 1e-12);
+    EXPECT_NEAR(split.radius, whole.radius, 1e-12);
+    EXPECT_LT((split.center - whole.center).norm(), 1e-12);
+    EXPECT_LT((split.radii - whole.radii).norm(), 1e-12);
+    // Half a sphere of radius 0.5: its two wide extents are the radius.
+    EXPECT_NEAR(split.radius, 0.5, 0.02);
+}
