@@ -1,6 +1,7 @@
 #include "distributed_pipeline.h"
 
 #include "ply_slices.h"
+#include "ranks.h"
 
 #include "core/components.h"
 #include "core/feature.h"
@@ -26,18 +27,6 @@
 namespace geofilter::mpi {
 
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-struct Ranks {
-    int rank = 0, size = 1;
-    explicit Ranks(MPI_Comm comm) {
-        MPI_Comm_rank(comm, &rank);
-        MPI_Comm_size(comm, &size);
-    }
-};
 
 // What every rank needs to take part in one file's filter, sent by rank 0.
 struct FileJob {
@@ -243,9 +232,9 @@ void add_ghost_rows_to_owners(MPI_Comm comm, const LocalMesh& m, Eigen::MatrixXd
 }
 
 // Every rank reads its slices; refuses as prepare_mesh does (the same messages).
-LocalMesh read_local_mesh(MPI_Comm comm, const FileJob& job, PlyLayout& layout) {
+// This rank's vertex and face records. Collective: a rank that fails makes every rank fail.
+void read_slices(MPI_Comm comm, const FileJob& job, PlyLayout& layout, LocalMesh& m) {
     const Ranks ranks(comm);
-    LocalMesh m;
     together(comm, [&] {
         std::string why_not;
         const std::optional<PlyLayout> read = slice_layout(job.input, why_not);
@@ -260,6 +249,19 @@ LocalMesh read_local_mesh(MPI_Comm comm, const FileJob& job, PlyLayout& layout) 
         m.vertex_records = read_vertex_records(job.input, layout, m.first_vertex, m.owned);
         m.face_slice = read_face_records(job.input, layout, m.first_face, my_faces);
     });
+}
+
+// The faces' corners in the local numbering (owned, then ghosts).
+void number_faces_locally(LocalMesh& m) {
+    const auto& corners = m.face_slice.corners;
+    m.triangles.resize(Eigen::Index(corners.size() / 3), 3);
+    for (Eigen::Index f = 0; f < m.triangles.rows(); ++f)
+        for (int k = 0; k < 3; ++k) m.triangles(f, k) = m.local(corners[size_t(3 * f + k)]);
+}
+
+LocalMesh read_local_mesh(MPI_Comm comm, const FileJob& job, PlyLayout& layout) {
+    LocalMesh m;
+    read_slices(comm, job, layout, m);
     // The first bad vertex and the first bad face over all ranks, as the whole-mesh check finds them.
     long long bad[2] = {m.vertices, m.faces}, bad_corner = 0;
     m.points.resize(Eigen::Index(m.owned), 3);
@@ -295,11 +297,9 @@ LocalMesh read_local_mesh(MPI_Comm comm, const FileJob& job, PlyLayout& layout) 
     m.points.conservativeResize(Eigen::Index(m.owned) + ghost_points.rows(), 3);
     m.points.bottomRows(ghost_points.rows()) = ghost_points;
 
-    const long long my_faces = long(corners.size() / 3);
-    m.triangles.resize(Eigen::Index(my_faces), 3);
-    m.usable.resize(size_t(my_faces));
-    for (long long f = 0; f < my_faces; ++f) {
-        for (int k = 0; k < 3; ++k) m.triangles(Eigen::Index(f), k) = m.local(corners[size_t(3 * f + k)]);
+    number_faces_locally(m);
+    m.usable.resize(size_t(m.triangles.rows()));
+    for (long long f = 0; f < m.triangles.rows(); ++f) {
         const auto t = m.triangles.row(Eigen::Index(f));
         m.usable[size_t(f)] = usable_face(m.points.row(t[0]), m.points.row(t[1]), m.points.row(t[2]), corners[size_t(3 * f)],
                                           corners[size_t(3 * f + 1)], corners[size_t(3 * f + 2)]);
@@ -386,8 +386,10 @@ FeatureEllipsoid measure_distributed_feature(MPI_Comm comm, const LocalMesh& m, 
 // that share a vertex are joined on rank 0, which sees only the labels and the joins (about
 // the partition's boundary), never the mesh.
 struct Components {
-    Eigen::MatrixXd centroid;  // per owned vertex
+    std::vector<int> label;          // per owned vertex
+    Eigen::MatrixXd label_centroid;  // per label
     int count = 0;
+    Eigen::RowVector3d centroid(Eigen::Index vertex) const { return label_centroid.row(label[size_t(vertex)]); }
 };
 
 Components distributed_components(MPI_Comm comm, const LocalMesh& m, const Triangles& usable, const Eigen::VectorXd& local_mass) {
@@ -422,11 +424,6 @@ Components distributed_components(MPI_Comm comm, const LocalMesh& m, const Trian
     std::vector<int> join_counts(size_t(ranks.size)), sum_counts(size_t(ranks.size));
     MPI_Gather(&join_count, 1, MPI_INT, join_counts.data(), 1, MPI_INT, 0, comm);
     MPI_Gather(&sum_count, 1, MPI_INT, sum_counts.data(), 1, MPI_INT, 0, comm);
-    auto displacements = [](const std::vector<int>& counts) {
-        std::vector<int> d(counts.size(), 0);
-        for (size_t r = 1; r < counts.size(); ++r) d[r] = d[r - 1] + counts[r - 1];
-        return d;
-    };
     std::vector<long long> all_joins;
     std::vector<double> all_sums;
     if (ranks.rank == 0) {
@@ -464,9 +461,8 @@ Components distributed_components(MPI_Comm comm, const LocalMesh& m, const Trian
     std::vector<double> my_centroids(size_t(3 * labels));
     MPI_Scatterv(centroids.data(), centroid_counts.data(), displacements(centroid_counts).data(), MPI_DOUBLE,
                  my_centroids.data(), 3 * labels, MPI_DOUBLE, 0, comm);
-    out.centroid.resize(Eigen::Index(m.owned), 3);
-    for (Eigen::Index i = 0; i < Eigen::Index(m.owned); ++i)
-        for (int k = 0; k < 3; ++k) out.centroid(i, k) = my_centroids[size_t(3 * label[size_t(i)] + k)];
+    out.label.assign(label.begin(), label.begin() + m.owned);
+    out.label_centroid = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(my_centroids.data(), labels, 3);
     return out;
 }
 
@@ -536,6 +532,10 @@ Partitioned partition_rows(MPI_Comm comm, Mat kt) {
     ISDestroy(&target);
     check_petsc(ISSort(out.rows), "moving the rows");
     check_petsc(MatCreateSubMatrix(kt, out.rows, out.rows, MAT_INITIAL_MATRIX, &out.kt), "moving the rows");
+    // PETSc keeps what a second extraction would reuse (this rank's rows again, every column
+    // index gathered): never asked for here, and held through the factorisation otherwise.
+    for (const char* kept : {"SubMatrix", "ISAllGather", "SubIScol", "isrow_d", "iscol_d", "iscol_o"})
+        check_petsc(PetscObjectCompose(reinterpret_cast<PetscObject>(out.kt), kept, nullptr), "moving the rows");
     MatInfo whole, local;
     Mat diagonal_block, coupling_block;
     const PetscInt* unused = nullptr;
@@ -580,11 +580,15 @@ std::optional<RunOutput> filter_file_collectively(MPI_Comm comm, const FileJob* 
     counts[1] = m.triangles.rows() - usable.rows();
     MPI_Allreduce(MPI_IN_PLACE, counts, 2, MPI_LONG_LONG, MPI_SUM, comm);
     if (counts[0] == 0) throw Error("every face of the mesh has zero area: nothing to filter");
-    const Laplacian local = cotan_laplacian(m.points, usable);
     Mat k = nullptr;
     Vec mass = nullptr;
-    assemble(comm, m, local, k, mass);
-    const Components components = distributed_components(comm, m, usable, local.mass);
+    Components components;
+    {  // this rank's faces' K and M, and its usable faces, are not needed past here
+        const Laplacian local = cotan_laplacian(m.points, usable);
+        assemble(comm, m, local, k, mass);
+        components = distributed_components(comm, m, usable, local.mass);
+    }
+    usable.resize(0, 0);
 
     // Active vertices (with mass), their bounding box, and q = M^1/2 (p - centroid).
     Eigen::VectorXd owned_mass(Eigen::Index(m.owned));
@@ -608,7 +612,7 @@ std::optional<RunOutput> filter_file_collectively(MPI_Comm comm, const FileJob* 
         for (int c = 0; c < 3; ++c) {
             box[c] = std::min(box[c], m.points(i, c));
             box[3 + c] = std::min(box[3 + c], -m.points(i, c));
-            q(i, c) = std::sqrt(mi) * (m.points(i, c) - components.centroid(i, c));
+            q(i, c) = std::sqrt(mi) * (m.points(i, c) - components.centroid(i)[c]);
         }
     }
     MPI_Allreduce(MPI_IN_PLACE, box, 6, MPI_DOUBLE, MPI_MIN, comm);
@@ -621,6 +625,14 @@ std::optional<RunOutput> filter_file_collectively(MPI_Comm comm, const FileJob* 
     check_petsc(VecCreateMPIWithArray(comm, 1, PetscInt(m.owned), PETSC_DETERMINE, scale.data(), &scale_vector), "forming Kt");
     check_petsc(MatDiagonalScale(k, scale_vector, scale_vector), "forming Kt");
     VecDestroy(&scale_vector);
+    scale.resize(0);
+    // Nothing of the mesh is held through the factorisation, where every rank's memory peaks:
+    // the records are read again for the output.
+    m.vertex_records = {};
+    m.face_slice = {};
+    m.triangles.resize(0, 0);
+    m.usable = {};
+    m.points.resize(0, 0);
     VecDestroy(&mass);
     check_petsc(MatSetOption(k, MAT_SYMMETRIC, PETSC_TRUE), "marking Kt symmetric");
     Partitioned parts = partition_rows(comm, k);
@@ -651,6 +663,7 @@ std::optional<RunOutput> filter_file_collectively(MPI_Comm comm, const FileJob* 
     };
     scatter(q, q_moved, SCATTER_FORWARD);
     q.resize(0, 0);
+    // Under Open MPI what the process frees stays its own unless given back (as on the rank-0 path).
     malloc_trim(0);
     out.report.seconds_assembly = seconds_since(t0);
 
@@ -679,9 +692,10 @@ std::optional<RunOutput> filter_file_collectively(MPI_Comm comm, const FileJob* 
     VecDestroy(&partition_order);
 
     // Back out of the q frame, about each component's centroid; vertices without area stay.
+    read_slices(comm, job, layout, m);
     for (Eigen::Index i = 0; i < Eigen::Index(m.owned); ++i)
-        if (owned_mass[i] > 0) solved.row(i) = solved.row(i) * scale[i] + components.centroid.row(i);
-        else solved.row(i) = m.points.row(i);
+        if (owned_mass[i] > 0) solved.row(i) = solved.row(i) / std::sqrt(owned_mass[i]) + components.centroid(i);
+        else solved.row(i) = position_in_record(layout, m.vertex_records.data() + i * layout.vertex_stride).transpose();
     int finite = solved.allFinite() ? 1 : 0;
     MPI_Allreduce(MPI_IN_PLACE, &finite, 1, MPI_INT, MPI_MIN, comm);
     if (!finite) throw Error("the filtered coordinates are not finite: the transfer function amplifies this mesh too much");
@@ -690,10 +704,11 @@ std::optional<RunOutput> filter_file_collectively(MPI_Comm comm, const FileJob* 
     // (area-weighted, over every face), each rank adding its faces' part to its ghosts' owners.
     Eigen::MatrixXd normals;
     if (layout.has_normals) {
-        Eigen::MatrixXd filtered(m.points.rows(), 3);
+        number_faces_locally(m);
+        Eigen::MatrixXd filtered(Eigen::Index(m.owned + long(m.ghosts.size())), 3);
         filtered.topRows(solved.rows()) = solved;
         filtered.bottomRows(Eigen::Index(m.ghosts.size())) = ghost_rows(comm, m, solved);
-        Eigen::MatrixXd sums = Eigen::MatrixXd::Zero(m.points.rows(), 3);
+        Eigen::MatrixXd sums = Eigen::MatrixXd::Zero(filtered.rows(), 3);
         for (Eigen::Index f = 0; f < m.triangles.rows(); ++f) {
             const Eigen::RowVector3d a = filtered.row(m.triangles(f, 0)), b = filtered.row(m.triangles(f, 1)),
                                      c = filtered.row(m.triangles(f, 2));

@@ -2,6 +2,7 @@
 
 #include "distributed_complex_ldlt.h"
 #include "distributed_pipeline.h"
+#include "ranks.h"
 
 #include "core/cascade.h"
 #include "core/exact_pair.h"
@@ -26,10 +27,6 @@ namespace geofilter::mpi {
 namespace {
 
 enum Command : int { finish = 0, solve = 1, filter_file = 2 };
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 // PETSc reports through return codes here (PetscReturnErrorHandler is pushed in main): a
 // failure becomes an Error, which every rank raises when the failing call was collective.
@@ -88,20 +85,6 @@ DistributedProblem broadcast_header(MPI_Comm comm, const DistributedProblem* roo
     packed.resize(size);
     MPI_Bcast(packed.data(), int(size), MPI_DOUBLE, 0, comm);
     return unpack(packed);
-}
-
-struct Ranks {
-    int rank = 0, size = 1;
-    explicit Ranks(MPI_Comm comm) {
-        MPI_Comm_rank(comm, &rank);
-        MPI_Comm_size(comm, &size);
-    }
-};
-
-std::vector<int> displacements(const std::vector<int>& counts) {
-    std::vector<int> displs(counts.size(), 0);
-    for (size_t r = 1; r < counts.size(); ++r) displs[r] = displs[r - 1] + counts[r - 1];
-    return displs;
 }
 
 // MUMPS makes the first rank of its communicator its host, which holds the largest share of
