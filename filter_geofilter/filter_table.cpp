@@ -205,8 +205,9 @@ FilterSpec denoise() {
             " goes too); larger features stay. Without: per-vertex sampling noise is removed by the same lowpass,"
             " its cutoff and operator (Taubin's umbrella or the intrinsic Delaunay cotangent) chosen on the mesh by"
             " generalized cross-validation among 9 candidates (the noise taken along the normals or in every"
-            " direction, as the mesh shows it), and closed parts keep their volume; the log lists every"
-            " candidate's score.",
+            " direction, as the mesh shows it; noise along the normals leaves the vertices right across the surface,"
+            " so there only the lowpass's motion along the normals is kept), and closed parts keep their volume;"
+            " the log lists every candidate's score.",
             p};
 }
 

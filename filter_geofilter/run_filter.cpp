@@ -338,6 +338,11 @@ RunOutput run_filter(const FilterSpec& spec, const ParameterValues& values, cons
     if (region == 0 && sampled) {
         out.points = std::move(sampled->points);
         out.report = sampled->report;
+        if (const auto& m = sampled->normal_motion)
+            out.log.push_back("motion along the normals only (the noise looks along them): " +
+                              std::to_string(m->vertices_projected) + " vertices kept the lowpass's motion across the surface and not its sideways drift; " +
+                              std::to_string(m->vertices_kept_smoothed) + " kept the lowpass's position (a face turned by more than " +
+                              num(normal_motion_max_turn_degrees) + " degrees otherwise, or no normal)");
         const VolumeRestoreReport& v = sampled->volume;
         out.log.push_back(v.closed_components == 0
                               ? std::string("no closed component: the volume was left as the lowpass made it")

@@ -93,6 +93,11 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
             best.report = report;
         }
     }
+    if (best.noise.model == NoiseModel::AlongNormals) {
+        best.normal_motion.emplace();
+        best.points = keep_normal_motion(points, best.points, triangles, normal_motion_max_turn_degrees,
+                                         &*best.normal_motion);
+    }
     best.points = restore_volume(points, best.points, triangles, &best.volume);
     best.report.seconds_total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return best;

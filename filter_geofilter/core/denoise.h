@@ -8,6 +8,7 @@
 #include "feature.h"
 #include "filter.h"
 #include "noise_direction.h"
+#include "normal_motion.h"
 #include "operators.h"
 #include "volume.h"
 
@@ -52,19 +53,22 @@ constexpr double denoise_cutoff_radii[] = {0.75, 1.0, 1.5, 2.0};
 std::vector<DenoiseDesign> denoise_sampling_candidates(double mean_edge_length, int order, std::optional<Operator> op);
 
 struct SamplingDenoise {
-    Points points;         // the chosen lowpass applied to the input, closed components' volume restored
+    Points points;         // the chosen lowpass applied to the input, its motion along the normals only
+                           // when the noise looks so, closed components' volume restored
     DenoiseDesign design;  // the chosen lowpass
     FilterReport report;   // of the chosen lowpass's run; seconds_total covers every candidate
     std::vector<std::pair<DenoiseDesign, CrossValidationScore>> scores;  // every candidate's
     NoiseDirection noise;  // the noise model the scores assumed
+    std::optional<NormalMotionReport> normal_motion;  // when the noise looks along the normals
     VolumeRestoreReport volume;
 };
 
 // Tries every candidate on the mesh (each twice: on the input and on the input perturbed by
 // 1 % of the mean edge length, along the normals or on every axis as the noise looks from
-// estimate_noise_direction, see cross_validation.h) and keeps the
-// lowest score, then gives each closed component back its input volume (volume.h: the lowpass
-// shrinks thin curved parts). Deterministic: the perturbation's signs come from a fixed seed. The runs
+// estimate_noise_direction, see cross_validation.h) and keeps the lowest score; when the
+// noise looks along the normals, keeps only the lowpass's motion along them
+// (normal_motion.h); then gives each closed component back its input volume (volume.h: the
+// lowpass shrinks thin curved parts). Deterministic: the perturbation's signs come from a fixed seed. The runs
 // solve to 1e-3 of the perturbation or to options.tolerance, whichever is tighter, so that
 // solver error does not reach the scores. Throws Error like apply_filter.
 SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& triangles, int order,
