@@ -6,6 +6,7 @@ top=$(cd "$(dirname "$0")/.." && pwd)
 
 packages=(
     build-essential cmake                 # the build
+    ccache                                # a compiler cache: the test command's second run rebuilds little
     meshlab                               # MeshLab 2020.09: meshlab, meshlabserver, libmeshlab-common.so
     dpkg-dev                              # apt-get source / dpkg-source, for MeshLab's headers and vcglib (the plugin only)
     qtbase5-dev libqt5opengl5-dev libglew-dev   # what MeshLab's headers include

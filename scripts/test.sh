@@ -17,6 +17,10 @@ set -euo pipefail
 top=$(cd "$(dirname "$0")/.." && pwd)
 build=${GEOFILTER_BUILD_DIR:-$top/build}
 "$top/scripts/setup.sh"
+# ccache (CMake compiles through it when installed) keys its cache on paths relative to this
+# checkout and ignores the working directory, so that a clean clone anywhere on the machine
+# reuses what an earlier run compiled; only what changed is compiled again.
+export CCACHE_BASEDIR="$top" CCACHE_NOHASHDIR=true
 # geofilter-mpi and its tests (label mpi) are required here: setup.sh installs MPI and PETSc,
 # so their absence is an error, not a suite that silently vanishes.
 "$top/scripts/build.sh" -DGEOFILTER_REQUIRE_MPI=ON

@@ -31,8 +31,10 @@ class MultigridMatchesGeofilter(unittest.TestCase):
         data = cli_harness.read_mesh(mesh)
         diagonal = float(np.linalg.norm(data.vertices.max(0) - data.vertices.min(0)))
         mass = lumped_mass(data.vertices, data.faces)
-        # A complex pair (lowpass, notch) and real poles (Butterworth of order 3, highpass).
-        for preset, options in [("lowpass", []), ("notch", []), ("butterworth", ["--order", "3"]), ("highpass", [])]:
+        # Complex pairs (the notch's, one of Butterworth's of order 3) and real poles (Butterworth's
+        # third, the highpass's). The lowpass's pair is left out: the same path, at 454 CG
+        # iterations (28 s) the slowest case.
+        for preset, options in [("notch", []), ("butterworth", ["--order", "3"]), ("highpass", [])]:
             with self.subTest(preset=preset):
                 reference = os.path.join(work, f"{preset}_reference.ply")
                 distributed = os.path.join(work, f"{preset}_multigrid.ply")
