@@ -207,7 +207,8 @@ FilterSpec denoise() {
             " generalized cross-validation among 9 candidates (the noise taken along the normals or in every"
             " direction, as the mesh shows it; noise along the normals leaves the vertices right across the surface,"
             " so there only the lowpass's motion along the normals is kept), and closed parts keep their volume;"
-            " the log lists every candidate's score.",
+            " the log lists every candidate's score (each operator's cutoffs are searched downhill from the"
+            " middle one, so those beyond a higher score are not run).",
             p};
 }
 

@@ -7,6 +7,7 @@
 
 #include "core/denoise.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -320,11 +321,17 @@ RunOutput run_filter(const FilterSpec& spec, const ParameterValues& values, cons
         out.log.push_back(std::string("noise model: ") + noise_model_name(sampled->noise.model) +
                           " (tangential / normal part of the umbrella offsets where the mesh is most regular: " +
                           num(sampled->noise.tangential_ratio) + "; 2 and up: in every direction)");
-        out.log.push_back("cross-validation (nothing selected) over " + std::to_string(sampled->scores.size()) +
-                          " lowpasses, score x 1e6 (lower is better; residual, degrees of freedom / noisy numbers):");
+        const auto scored = std::count_if(sampled->scores.begin(), sampled->scores.end(),
+                                          [](const auto& candidate) { return candidate.second.has_value(); });
+        out.log.push_back("cross-validation (nothing selected): " + std::to_string(scored) + " of " +
+                          std::to_string(sampled->scores.size()) +
+                          " lowpasses scored, each operator's cutoffs searched downhill from the middle one; score x 1e6 "
+                          "(lower is better; residual, degrees of freedom / noisy numbers):");
         for (const auto& [candidate, score] : sampled->scores)
-            out.log.push_back("  " + candidate.origin + ": " + num(1e6 * score.score) + " (" + num(1e6 * score.residual) +
-                              ", " + num(score.degrees_of_freedom / score.observations) + ")" +
+            out.log.push_back("  " + candidate.origin + ": " +
+                              (score ? num(1e6 * score->score) + " (" + num(1e6 * score->residual) + ", " +
+                                           num(score->degrees_of_freedom / score->observations) + ")"
+                                     : std::string("not scored (beyond a higher score)")) +
                               (candidate.origin == d.origin ? "  <- chosen" : ""));
         out.log.push_back("cutoff sc = " + num(d.cutoff) + " from the sampling: " + d.origin);
         out.log.push_back("design: Butterworth lowpass of order " + std::to_string(order) + ", cutoff sc = " +

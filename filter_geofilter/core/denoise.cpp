@@ -36,6 +36,31 @@ std::vector<DenoiseDesign> denoise_sampling_candidates(double mean_edge_length, 
     return out;
 }
 
+std::vector<int> search_downhill(int first, int last, const std::function<double(int)>& score) {
+    if (first >= last) return {};
+    std::vector<double> scores(static_cast<std::size_t>(last - first), 0);
+    std::vector<bool> scored(scores.size(), false);
+    std::vector<int> order;
+    const auto at = [&](int i) {
+        const auto k = static_cast<std::size_t>(i - first);
+        if (!scored[k]) {
+            scores[k] = score(i);
+            scored[k] = true;
+            order.push_back(i);
+        }
+        return scores[k];
+    };
+    int lowest = first + (last - first - 1) / 2;
+    at(lowest);
+    for (;;) {
+        int next = lowest;
+        for (int neighbour : {lowest - 1, lowest + 1})
+            if (neighbour >= first && neighbour < last && at(neighbour) < at(next)) next = neighbour;
+        if (next == lowest) return order;
+        lowest = next;
+    }
+}
+
 SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& triangles, int order,
                                        std::optional<Operator> op, const FilterOptions& options) {
     const auto t0 = std::chrono::steady_clock::now();
@@ -43,13 +68,13 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
     const PreparedMesh usable = prepare_mesh(points, triangles);
     const double h = mean_edge_length(usable.points, usable.triangles);
     const std::vector<DenoiseDesign> candidates = denoise_sampling_candidates(h, order, op);
-    const double step = 0.01 * h;
+    const double step = denoise_probe_step * h;
     const double size = (points.colwise().maxCoeff() - points.colwise().minCoeff()).norm();
-    constexpr std::uint64_t seed = 20261201;
 
     SamplingDenoise best;
     best.noise = estimate_noise_direction(usable.points, usable.triangles);
-    double best_score = 0;
+    for (const DenoiseDesign& design : candidates) best.scores.emplace_back(design, std::nullopt);
+    int chosen = -1;
     const int runs = 2 * static_cast<int>(candidates.size());
     int run = 0;
     // The runs on the input and on the perturbed input each keep their mesh for the next
@@ -57,13 +82,8 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
     // runs share the input's cache (FilterCache rebinds the coordinates): the same factor,
     // and CG starting from the input run's solution, a probe step away.
     FilterCache on_input, on_perturbed;
-    std::optional<Operator> cached_op;
-    for (const DenoiseDesign& design : candidates) {
-        if (cached_op != design.op) {
-            on_input.clear();
-            on_perturbed.clear();
-            cached_op = design.op;
-        }
+    const auto score_candidate = [&](int index) {
+        const DenoiseDesign& design = candidates[static_cast<std::size_t>(index)];
         FilterOptions o = options;
         o.op = design.op;
         o.tolerance = std::min(options.tolerance, 1e-3 * step / size);
@@ -84,14 +104,23 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
         };
         Points smoothed;
         const CrossValidationScore score =
-            generalized_cross_validation(points, triangles, smooth, step, seed, best.noise.model, &smoothed);
-        best.scores.emplace_back(design, score);
-        if (best.scores.size() == 1 || score.score < best_score) {
-            best_score = score.score;
+            generalized_cross_validation(points, triangles, smooth, step, denoise_probe_seed, best.noise.model, &smoothed);
+        best.scores[static_cast<std::size_t>(index)].second = score;
+        if (chosen < 0 || score.score < best.scores[static_cast<std::size_t>(chosen)].second->score) {
+            chosen = index;
             best.points = std::move(smoothed);
             best.design = design;
             best.report = report;
         }
+        return score.score;
+    };
+    for (std::size_t first = 0; first < candidates.size();) {
+        std::size_t last = first;
+        while (last < candidates.size() && candidates[last].op == candidates[first].op) ++last;
+        on_input.clear();
+        on_perturbed.clear();
+        search_downhill(static_cast<int>(first), static_cast<int>(last), score_candidate);
+        first = last;
     }
     if (best.noise.model == NoiseModel::AlongNormals) {
         best.normal_motion.emplace();

@@ -54,7 +54,14 @@ class DenoiseTest(unittest.TestCase):
         steps = [h.sphere(1.0, 4), h.geofilter("GeoFilter: Denoise", useSelection=False)]
         run, v = self.run_steps(steps, "none")
         log = "\n".join(run.log)
-        self.assertIn("cross-validation (nothing selected) over 9 lowpasses", log, run.describe())
+        m = re.search(r"cross-validation \(nothing selected\): ([0-9]) of 9 lowpasses scored", log)
+        self.assertIsNotNone(m, run.describe())
+        # Every candidate is listed, scored or not; the downhill search skips at least one of
+        # the umbrella's five cutoffs.
+        listed = [line for line in run.log if re.search(r": {3}(per-vertex frequency|features of radius) ", line)]
+        self.assertEqual(len(listed), 9, log)
+        self.assertEqual(sum("not scored" not in line for line in listed), int(m.group(1)), log)
+        self.assertLess(int(m.group(1)), 9, log)
         chosen = [line for line in run.log if line.endswith("<- chosen")]
         self.assertEqual(len(chosen), 1, log)
         m = re.search(r"design: Butterworth lowpass of order 4, cutoff sc = ([0-9.eE+-]+), operator (umbrella|intrinsic Delaunay cotangent)", log)

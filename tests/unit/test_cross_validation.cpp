@@ -15,8 +15,11 @@
 #include <Eigen/Eigenvalues>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
+#include <set>
+#include <vector>
 
 using namespace geofilter;
 
@@ -99,6 +102,77 @@ TEST(CrossValidation, ExtremeSmoothersScoreAsTheFormulaSays) {
     EXPECT_THROW(generalized_cross_validation(m.points, m.triangles, [](const Points& y) { return y; }, 0, 1,
                                               NoiseModel::AlongNormals),
                  Error);
+}
+
+// The downhill search scores the middle candidate, then the neighbours of the lowest score so
+// far until neither is lower: on a valley it ends at the bottom, scoring fewer candidates the
+// nearer the bottom lies to the middle; with two valleys it may end in the nearer one.
+TEST(Denoise, SearchDownhillEndsAtTheBottomOfAValley) {
+    for (int n = 1; n <= 6; ++n)
+        for (int bottom = 0; bottom < n; ++bottom) {
+            SCOPED_TRACE(n);
+            SCOPED_TRACE(bottom);
+            const int first = 3;  // any offset: the family's place in the candidate list
+            const auto valley = [&](int i) { return std::abs(i - first - bottom) + 0.5 * (i - first); };
+            const std::vector<int> order = search_downhill(first, first + n, valley);
+            ASSERT_FALSE(order.empty());
+            EXPECT_EQ(order.front(), first + (n - 1) / 2);
+            const int lowest = *std::min_element(order.begin(), order.end(),
+                                                 [&](int a, int b) { return valley(a) < valley(b); });
+            EXPECT_EQ(lowest, first + bottom);
+            EXPECT_EQ(std::set<int>(order.begin(), order.end()).size(), order.size()) << "a candidate scored twice";
+            for (int i : order) {
+                EXPECT_GE(i, first);
+                EXPECT_LT(i, first + n);
+            }
+        }
+    const auto count = [](int n, int bottom) {
+        return search_downhill(0, n, [&](int i) { return std::abs(i - bottom); }).size();
+    };
+    EXPECT_EQ(count(5, 2), 3u);  // the middle and its two neighbours
+    EXPECT_EQ(count(5, 0), 4u);  // 2, 1, 3, then 0
+    EXPECT_EQ(count(4, 3), 4u);
+    EXPECT_TRUE(search_downhill(2, 2, [](int) { return 0.0; }).empty());
+    // Two valleys (bottoms at 2 and 4, the far one deeper): the search ends in the near one.
+    const double two_valleys[] = {1, 2, 1.5, 3, 0};
+    const std::vector<int> order = search_downhill(0, 5, [&](int i) { return two_valleys[i]; });
+    EXPECT_EQ(std::count(order.begin(), order.end(), 4), 0);
+}
+
+// Denoise searches each operator's cutoffs downhill: every candidate it did not score, scored
+// here on the same probe, scores no lower than the one it chose.
+TEST(Denoise, CandidatesLeftUnscoredScoreNoLowerThanTheChosenOne) {
+    const Mesh clean = icosphere(4, 1.0);
+    const double h = mean_edge_length(clean.points, clean.triangles);
+    for (bool isotropic : {false, true}) {
+        SCOPED_TRACE(isotropic ? "in every direction" : "along the normals");
+        const Points noisy = isotropic ? noised_in_every_direction(clean, 0.3 * h, 5) : noised_along_normals(clean, 0.3 * h, 5);
+        FilterOptions options;
+        const SamplingDenoise out = denoise_sampling_noise(noisy, clean.triangles, 4, {}, options);
+        const double hn = mean_edge_length(noisy, clean.triangles);
+        const double size = (noisy.colwise().maxCoeff() - noisy.colwise().minCoeff()).norm();
+        double chosen = INFINITY;
+        for (const auto& [design, score] : out.scores)
+            if (design.origin == out.design.origin) chosen = score->score;
+        ASSERT_TRUE(std::isfinite(chosen));
+        int unscored = 0;
+        for (const auto& [design, score] : out.scores) {
+            SCOPED_TRACE(design.origin);
+            if (score) {
+                EXPECT_GE(score->score, chosen);
+                continue;
+            }
+            ++unscored;
+            FilterOptions o;
+            o.op = design.op;
+            o.tolerance = std::min(o.tolerance, 1e-3 * denoise_probe_step * hn / size);
+            const Smoother smooth = [&](const Points& y) { return apply_filter(y, clean.triangles, design.g, o); };
+            const double here = generalized_cross_validation(noisy, clean.triangles, smooth, denoise_probe_step * hn,
+                                                             denoise_probe_seed, out.noise.model).score;
+            EXPECT_GE(here, chosen);
+        }
+        EXPECT_GT(unscored, 0) << "the search scored every candidate";
+    }
 }
 
 // On a regular mesh, whose clean umbrella offsets are nearly all along the normals, the
