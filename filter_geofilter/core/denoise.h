@@ -71,7 +71,7 @@ struct SamplingDenoise {
     Points points;         // the chosen lowpass applied to the input, its motion along the normals only
                            // when the noise looks so, closed components' volume restored
     DenoiseDesign design;  // the chosen lowpass
-    FilterReport report;   // of the chosen lowpass's run; seconds_total covers every candidate
+    FilterReport report;   // of the chosen lowpass's final run; seconds_total covers every candidate
     // Every candidate, with its score when the downhill search scored it.
     std::vector<std::pair<DenoiseDesign, std::optional<CrossValidationScore>>> scores;
     NoiseDirection noise;  // the noise model the scores assumed
@@ -82,7 +82,8 @@ struct SamplingDenoise {
 // Scores the candidates on the mesh, each operator's family by search_downhill, each
 // candidate twice: on the input and on the input perturbed by 1 % of the mean edge length,
 // along the normals or on every axis as the noise looks from estimate_noise_direction (see
-// cross_validation.h). Keeps the lowest score; when the noise looks along the normals, keeps
+// cross_validation.h). Applies the lowest-scoring one once more on its own (with
+// options.tolerance); when the noise looks along the normals, keeps
 // only that lowpass's motion along them (normal_motion.h); then gives each closed component
 // back its input volume (volume.h: the lowpass shrinks thin curved parts). Deterministic: the
 // perturbation's signs come from a fixed seed. The runs solve to 1e-3 of the perturbation or
