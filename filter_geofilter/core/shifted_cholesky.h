@@ -7,6 +7,7 @@
 #include "complex_shifted_factor.h"
 #include "exact_pair.h"
 #include "laplace.h"
+#include "supernodal_solve.h"
 
 #include <Eigen/CholmodSupport>
 
@@ -33,11 +34,17 @@ public:
     void factorize(double shift);
     bool has_factor() const { return !std::isnan(shift_); }
     double shift() const { return shift_; }
-    Eigen::MatrixXd solve(const Eigen::MatrixXd& b) const { return llt_.solve(b); }
+    // (Kt + shift I)^-1 b and (Kt + shift I)^-2 b with the current factor.
+    Eigen::MatrixXd solve(const Eigen::MatrixXd& b) const { return solve_supernodal(llt_.factor(), b, 1); }
+    Eigen::MatrixXd solve_squared(const Eigen::MatrixXd& b) const { return solve_supernodal(llt_.factor(), b, 2); }
 
 private:
+    // Eigen's wrapper computes the factor; the solves read it directly (supernodal_solve.h).
+    struct Llt : Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> {
+        const cholmod_factor& factor() const { return *m_cholmodFactor; }
+    };
     const SparseMatrix& kt_;
-    Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> llt_;
+    Llt llt_;
     bool analysed_ = false;
     double shift_ = NAN;
 };

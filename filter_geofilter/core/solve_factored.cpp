@@ -93,7 +93,7 @@ public:
             out += modulus2 * in;
         };
         const BlockOperator preconditioner = [&](const Eigen::MatrixXd& in, Eigen::MatrixXd& out) {
-            out = state_.cholesky.solve(state_.cholesky.solve(in));
+            out = state_.cholesky.solve_squared(in);
         };
         const PreconditionedRange range = pair_preconditioner_range(r, shift);
         const double lower = range.low * pair_operator_lower_bound(r);

@@ -7,13 +7,13 @@
 #include "core/filter.h"
 #include "core/laplace.h"
 #include "core/region.h"
+#include "core/shifted_cholesky.h"
 #include "benchmark_support.h"
 #include "shapes.h"
 #include "core/solvers.h"
 #include "core/transfer_function.h"
 #include "exact_pairs.h"
 
-#include <Eigen/CholmodSupport>
 
 // vcglib headers are not self-contained: complex.h must come first.
 #include <vcg/complex/complex.h>
@@ -121,15 +121,15 @@ Result in_child(const std::function<void(Result&)>& work) {
 double floor_solve(const Mesh& m, double h) {
     const double t0 = now();
     const Laplacian l = cotan_laplacian(m.points, m.triangles);
-    SparseMatrix a = h * l.stiffness;
-    a.diagonal() += l.mass;  // K has a full diagonal, so this touches existing entries only
-    // The same library with the same settings as the factored solver.
-    Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> llt;
-    detail::use_amd_ordering(llt.cholmod());
-    llt.compute(a);
-    const Eigen::MatrixXd rhs = l.mass.asDiagonal() * m.points;
-    const Eigen::MatrixXd x = llt.solve(rhs);
-    if (llt.info() != Eigen::Success || !x.allFinite()) throw Error("floor solve failed");
+    // (M + hK) x = M p in the factored solver's symmetric frame y = M^1/2 x:
+    // (Kt + I / h) y = M^1/2 p / h, factorised and solved by the solver's own code.
+    const SparseMatrix kt = mass_normalized_stiffness(l);
+    const Eigen::VectorXd sqrt_mass = l.mass.cwiseSqrt();
+    detail::ShiftedCholesky cholesky(kt);
+    cholesky.factorize(1.0 / h);
+    const Eigen::MatrixXd y = cholesky.solve(sqrt_mass.asDiagonal() * m.points / h);
+    const Eigen::MatrixXd x = sqrt_mass.cwiseInverse().asDiagonal() * y;
+    if (!x.allFinite()) throw Error("floor solve failed");
     return now() - t0;
 }
 
@@ -259,14 +259,68 @@ std::string preview_row(const std::string& name, const Mesh& m) {
     return row.str();
 }
 
+// Where a CG pair solve's time goes (issue 13's profile): one triangular sweep pair with the
+// factor of Kt + |r| I (the lowpass's preconditioner), CHOLMOD's solve against the core's own
+// sweep, next to the memory bandwidth that bounds it and the product with Kt each iteration
+// also makes. Best of three each.
+struct ExposedLlt : Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> {
+    const cholmod_factor& factor() const { return *m_cholmodFactor; }
+};
+
+template <class F>
+double best_of_three(F&& f) {
+    double best = 1e300;
+    for (int k = 0; k < 3; ++k) {
+        const double t = now();
+        f();
+        best = std::min(best, now() - t);
+    }
+    return best;
+}
+
+int solve_profile_rows(const std::vector<std::function<NamedMesh()>>& makers) {
+    std::printf("| mesh | vertices | factor entries (M) | factor MB | read GB/s | CHOLMOD solve, 1 column (s) | "
+                "CHOLMOD solve, 3 columns (s) | own sweep, 3 columns (s) | own sweep: GB/s of factor | Kt product, 3 columns (s) |\n"
+                "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+    const double shift = std::abs(design_second_order({25, 50, 1, 1.1, 0}).poles.at(0));
+    for (const auto& make : makers) {
+        const NamedMesh named = make();
+        const SparseMatrix kt = mass_normalized_stiffness(cotan_laplacian(named.mesh.points, named.mesh.triangles));
+        ExposedLlt llt;
+        detail::use_amd_ordering(llt.cholmod());
+        llt.setShift(shift);
+        llt.compute(kt);
+        if (llt.info() != Eigen::Success) throw Error("factorisation failed");
+        const double entries = double(llt.cholmod().lnz), bytes = 8 * entries;
+        std::vector<double> stream(std::size_t(entries), 1.0);
+        double sink = 0;
+        const double read = best_of_three([&] { for (double v : stream) sink += v; });
+        static volatile double keep_the_reads;
+        keep_the_reads = sink;
+        stream = {};
+        const Eigen::MatrixXd b3 = Eigen::MatrixXd::Random(kt.rows(), 3), b1 = b3.col(0);
+        Eigen::MatrixXd out;
+        const double cholmod1 = best_of_three([&] { out = llt.solve(b1); });
+        const double cholmod3 = best_of_three([&] { out = llt.solve(b3); });
+        const double own3 = best_of_three([&] { out = detail::solve_supernodal(llt.factor(), b3); });
+        const double product = best_of_three([&] { out = kt * b3; });
+        std::printf("| %s | %ld | %.1f | %.0f | %.2f | %.3f | %.3f | %.3f | %.2f | %.3f |\n", named.name.c_str(),
+                    long(kt.rows()), entries / 1e6, bytes / 1e6, bytes / read / 1e9, cholmod1, cholmod3, own3,
+                    2 * bytes / own3 / 1e9, product);
+        std::fflush(stdout);
+    }
+    return 0;
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
     std::string out_dir = "benchmark-results", meshes_dir = "meshes";
     double pcg_budget = 60;
     double pcg_full_budget = 900;  // lowpass on meshes below 120k vertices: PCG to convergence
-    // --region: only the issue-11 region rows (a few minutes); --preview: only the preview rows (a minute)
-    bool quick = false, region_only = false, preview_only = false;
+    // --region: only the issue-11 region rows (a few minutes); --preview: only the preview rows (a minute);
+    // --solve-profile: only where a CG iteration's time goes (two minutes)
+    bool quick = false, region_only = false, preview_only = false, solve_profile_only = false;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         if (a == "--out" && i + 1 < argc) out_dir = argv[++i];
@@ -276,9 +330,10 @@ int main(int argc, char** argv) {
         else if (a == "--quick") quick = true;
         else if (a == "--region") region_only = true;
         else if (a == "--preview") preview_only = true;
+        else if (a == "--solve-profile") solve_profile_only = true;
         else {
             std::cerr << "usage: geofilter_benchmark [--out DIR] [--meshes DIR] [--pcg-seconds S] [--pcg-full-seconds S]"
-                         " [--quick] [--region] [--preview]\n";
+                         " [--quick] [--region] [--preview] [--solve-profile]\n";
             return 2;
         }
     }
@@ -317,6 +372,8 @@ int main(int argc, char** argv) {
             return NamedMesh{"man" + (levels ? " subdivided x" + std::to_string(levels) : std::string()), m};
         });
 
+    if (solve_profile_only)  // the ~1M-vertex meshes (--quick: the small ones)
+        return solve_profile_rows(quick ? makers : std::vector<std::function<NamedMesh()>>{makers[3], makers.back()});
     if (region_only) {
         // The ~1M-vertex meshes: the synthetic torus and the subdivided scan (--quick: the small ones).
         return region_rows(quick ? makers : std::vector<std::function<NamedMesh()>>{makers[3], makers.back()}, out_dir);
