@@ -75,6 +75,9 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
     best.noise = estimate_noise_direction(usable.points, usable.triangles);
     for (const DenoiseDesign& design : candidates) best.scores.emplace_back(design, std::nullopt);
     int chosen = -1;
+    // Progress: the scoring runs share the first 90 % (counted as if every candidate were
+    // scored: the search skips some, so the bar jumps ahead at the end), the final run the rest.
+    const double scoring_share = 0.9;
     const int runs = 2 * static_cast<int>(candidates.size());
     int run = 0;
     // The runs on the input and on the perturbed input each keep their mesh for the next
@@ -91,7 +94,7 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
             const bool perturbed = run % 2 == 1;
             if (options.progress)
                 o.progress = [&, base = run](double fraction, const std::string& stage) {
-                    return options.progress((base + fraction) / runs,
+                    return options.progress(scoring_share * (base + fraction) / runs,
                                             "Denoise: " + design.origin + (perturbed ? " (perturbed)" : "") + ": " + stage);
                 };
             FilterCache& cache = perturbed && operator_uses_positions(design.op) ? on_perturbed : on_input;
@@ -124,7 +127,8 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
     o.op = best.design.op;
     if (options.progress)
         o.progress = [&](double fraction, const std::string& stage) {
-            return options.progress(fraction, "Denoise: the chosen lowpass, " + best.design.origin + ": " + stage);
+            return options.progress(scoring_share + (1 - scoring_share) * fraction,
+                                    "Denoise: the chosen lowpass, " + best.design.origin + ": " + stage);
         };
     best.points = apply_filter(points, triangles, best.design.g, o, &best.report);
     if (best.noise.model == NoiseModel::AlongNormals) {

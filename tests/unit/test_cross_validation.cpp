@@ -149,7 +149,17 @@ TEST(Denoise, CandidatesLeftUnscoredScoreNoLowerThanTheChosenOne) {
         SCOPED_TRACE(isotropic ? "in every direction" : "along the normals");
         const Points noisy = isotropic ? noised_in_every_direction(clean, 0.3 * h, 5) : noised_along_normals(clean, 0.3 * h, 5);
         FilterOptions options;
+        std::vector<double> progress;
+        options.progress = [&](double fraction, const std::string&) {
+            progress.push_back(fraction);
+            return true;
+        };
         const SamplingDenoise out = denoise_sampling_noise(noisy, clean.triangles, 4, {}, options);
+        // The bar only moves forward, across the scoring runs and the final one.
+        ASSERT_FALSE(progress.empty());
+        EXPECT_TRUE(std::is_sorted(progress.begin(), progress.end()));
+        EXPECT_GE(progress.front(), 0.0);
+        EXPECT_LE(progress.back(), 1.0);
         const double hn = mean_edge_length(noisy, clean.triangles);
         const double size = (noisy.colwise().maxCoeff() - noisy.colwise().minCoeff()).norm();
         double chosen = INFINITY;
