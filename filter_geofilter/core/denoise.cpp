@@ -105,10 +105,7 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
         const CrossValidationScore score =
             generalized_cross_validation(points, triangles, smooth, step, denoise_probe_seed, best.noise.model);
         best.scores[static_cast<std::size_t>(index)].second = score;
-        if (chosen < 0 || score.score < best.scores[static_cast<std::size_t>(chosen)].second->score) {
-            chosen = index;
-            best.design = design;
-        }
+        if (chosen < 0 || score.score < best.scores[static_cast<std::size_t>(chosen)].second->score) chosen = index;
         return score.score;
     };
     for (std::size_t first = 0; first < candidates.size();) {
@@ -119,6 +116,7 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
         search_downhill(static_cast<int>(first), static_cast<int>(last), score_candidate);
         first = last;
     }
+    best.design = candidates.at(static_cast<std::size_t>(chosen));
     // A scoring run that follows another holds that run's factor or makes a new one as their
     // measured times say, which moves its result within the tolerance; the chosen lowpass is
     // applied once more on its own, so that the result depends on the mesh and the choice

@@ -108,8 +108,9 @@ void apply_supernodal_inverse(const cholmod_factor& factor, Eigen::MatrixXd& x, 
 }
 
 Eigen::MatrixXd solve_supernodal(const cholmod_factor& factor, const Eigen::MatrixXd& b, int times) {
-    const int* perm = static_cast<const int*>(factor.Perm);
     const Eigen::Index n = b.rows();
+    if (n != Eigen::Index(factor.n)) throw std::logic_error("solve_supernodal: wrong number of rows");
+    const int* perm = static_cast<const int*>(factor.Perm);
     Eigen::MatrixXd x(n, b.cols());
     for (Eigen::Index k = 0; k < n; ++k) x.row(k) = b.row(perm ? perm[k] : k);
     apply_supernodal_inverse(factor, x, times);
