@@ -39,12 +39,8 @@ public:
     Eigen::MatrixXd solve_squared(const Eigen::MatrixXd& b) const { return solve_supernodal(llt_.factor(), b, 2); }
 
 private:
-    // Eigen's wrapper computes the factor; the solves read it directly (supernodal_solve.h).
-    struct Llt : Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> {
-        const cholmod_factor& factor() const { return *m_cholmodFactor; }
-    };
     const SparseMatrix& kt_;
-    Llt llt_;
+    SupernodalCholesky llt_;
     bool analysed_ = false;
     double shift_ = NAN;
 };

@@ -7,6 +7,9 @@
 // Internal to the core.
 #pragma once
 
+#include "types.h"
+
+#include <Eigen/CholmodSupport>
 #include <Eigen/Core>
 #include <cholmod.h>
 
@@ -18,5 +21,10 @@ void apply_supernodal_inverse(const cholmod_factor& factor, Eigen::MatrixXd& x, 
 
 // A^-times b for b in the matrix's own order: P applied once before, P^T once after.
 Eigen::MatrixXd solve_supernodal(const cholmod_factor& factor, const Eigen::MatrixXd& b, int times = 1);
+
+// Eigen's wrapper, which analyses and factorises, with the factor it holds readable.
+struct SupernodalCholesky : Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> {
+    const cholmod_factor& factor() const { return *m_cholmodFactor; }
+};
 
 } // namespace geofilter::detail

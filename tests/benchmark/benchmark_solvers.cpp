@@ -8,12 +8,12 @@
 #include "core/laplace.h"
 #include "core/region.h"
 #include "core/shifted_cholesky.h"
+#include "core/supernodal_solve.h"
 #include "benchmark_support.h"
 #include "shapes.h"
 #include "core/solvers.h"
 #include "core/transfer_function.h"
 #include "exact_pairs.h"
-
 
 // vcglib headers are not self-contained: complex.h must come first.
 #include <vcg/complex/complex.h>
@@ -263,10 +263,6 @@ std::string preview_row(const std::string& name, const Mesh& m) {
 // factor of Kt + |r| I (the lowpass's preconditioner), CHOLMOD's solve against the core's own
 // sweep, next to the memory bandwidth that bounds it and the product with Kt each iteration
 // also makes. Best of three each.
-struct ExposedLlt : Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> {
-    const cholmod_factor& factor() const { return *m_cholmodFactor; }
-};
-
 template <class F>
 double best_of_three(F&& f) {
     double best = 1e300;
@@ -286,7 +282,7 @@ int solve_profile_rows(const std::vector<std::function<NamedMesh()>>& makers) {
     for (const auto& make : makers) {
         const NamedMesh named = make();
         const SparseMatrix kt = mass_normalized_stiffness(cotan_laplacian(named.mesh.points, named.mesh.triangles));
-        ExposedLlt llt;
+        detail::SupernodalCholesky llt;
         detail::use_amd_ordering(llt.cholmod());
         llt.setShift(shift);
         llt.compute(kt);
