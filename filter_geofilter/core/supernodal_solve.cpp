@@ -28,16 +28,26 @@ Supernodes supernodes_of(const cholmod_factor& f) {
             static_cast<const int*>(f.s),     static_cast<const double*>(f.x), static_cast<int>(f.nsuper)};
 }
 
+// One supernode's block: its first column, width columns, height rows (the first `width` of
+// them its own columns), their indices, and the column-major values.
+struct Block {
+    int first, width, height;
+    const int* rows;
+    const double* values;
+};
+
+Block block_of(const Supernodes& sn, int s) {
+    const int first = sn.first_column[s], height = sn.row_start[s + 1] - sn.row_start[s];
+    return {first, sn.first_column[s + 1] - first, height, sn.rows + sn.row_start[s], sn.values + sn.value_start[s]};
+}
+
 // W columns of x at a time (starting at `first_rhs`), gathered contiguously per block (column c
 // at buffer + c * height), so each column of L is read once for all W and the W sums are
 // independent chains (a single floating-point sum is not vectorised, and waits on itself).
 template <int W>
 void forward(const Supernodes& sn, Eigen::MatrixXd& x, Eigen::Index first_rhs, std::vector<double>& buffer) {
     for (int s = 0; s < sn.count; ++s) {
-        const int first = sn.first_column[s], width = sn.first_column[s + 1] - first;
-        const int height = sn.row_start[s + 1] - sn.row_start[s];
-        const int* rows = sn.rows + sn.row_start[s];
-        const double* block = sn.values + sn.value_start[s];
+        const auto [first, width, height, rows, block] = block_of(sn, s);
         double* b[W];
         for (int c = 0; c < W; ++c) {
             b[c] = buffer.data() + std::size_t(c) * height;
@@ -61,10 +71,7 @@ void forward(const Supernodes& sn, Eigen::MatrixXd& x, Eigen::Index first_rhs, s
 template <int W>
 void backward(const Supernodes& sn, Eigen::MatrixXd& x, Eigen::Index first_rhs, std::vector<double>& buffer) {
     for (int s = sn.count - 1; s >= 0; --s) {
-        const int first = sn.first_column[s], width = sn.first_column[s + 1] - first;
-        const int height = sn.row_start[s + 1] - sn.row_start[s];
-        const int* rows = sn.rows + sn.row_start[s];
-        const double* block = sn.values + sn.value_start[s];
+        const auto [first, width, height, rows, block] = block_of(sn, s);
         double* b[W];
         for (int c = 0; c < W; ++c) {
             b[c] = buffer.data() + std::size_t(c) * height;

@@ -21,6 +21,34 @@ SparseMatrix perturbed_torus_kt() {
     return mass_normalized_stiffness(cotan_laplacian(m.points, m.triangles));
 }
 
+// CHOLMOD's own factor of Kt + shift I, AMD-ordered and postordered like the solver's,
+// supernodal or simplicial as asked.
+struct CholmodFactor {
+    cholmod_common common;
+    cholmod_factor* factor = nullptr;
+    int status = CHOLMOD_OK;
+
+    CholmodFactor(const SparseMatrix& kt, double shift, int supernodal) {
+        cholmod_start(&common);
+        common.nmethods = 1;
+        common.method[0].ordering = CHOLMOD_AMD;
+        common.postorder = 1;
+        common.supernodal = supernodal;
+        cholmod_sparse a = Eigen::viewAsCholmod(const_cast<SparseMatrix&>(kt));
+        a.stype = -1;
+        factor = cholmod_analyze(&a, &common);
+        double beta[2] = {shift, 0};
+        cholmod_factorize_p(&a, beta, nullptr, 0, factor, &common);
+        status = common.status;
+    }
+    CholmodFactor(const CholmodFactor&) = delete;
+    CholmodFactor& operator=(const CholmodFactor&) = delete;
+    ~CholmodFactor() {
+        cholmod_free_factor(&factor, &common);
+        cholmod_finish(&common);
+    }
+};
+
 double relative_error(const Eigen::MatrixXd& x, const Eigen::MatrixXd& reference) {
     return (x - reference).norm() / reference.norm();
 }
@@ -52,18 +80,9 @@ TEST(SupernodalSolve, HandlesWideSupernodesAndThePermutation) {
     llt.setShift(2.0);
     llt.compute(kt);
     ASSERT_EQ(llt.info(), Eigen::Success);
-    cholmod_common common;
-    cholmod_start(&common);
-    common.nmethods = 1;
-    common.method[0].ordering = CHOLMOD_AMD;
-    common.postorder = 1;
-    common.supernodal = CHOLMOD_SUPERNODAL;
-    cholmod_sparse a = Eigen::viewAsCholmod(kt);
-    a.stype = -1;
-    cholmod_factor* factor = cholmod_analyze(&a, &common);
-    double beta[2] = {2.0, 0};
-    cholmod_factorize_p(&a, beta, nullptr, 0, factor, &common);
-    ASSERT_EQ(common.status, CHOLMOD_OK);
+    const CholmodFactor own(kt, 2.0, CHOLMOD_SUPERNODAL);
+    ASSERT_EQ(own.status, CHOLMOD_OK);
+    const cholmod_factor* factor = own.factor;
     const int* first_column = static_cast<const int*>(factor->super);
     int widest = 0;
     for (std::size_t s = 0; s < factor->nsuper; ++s) widest = std::max(widest, first_column[s + 1] - first_column[s]);
@@ -74,22 +93,12 @@ TEST(SupernodalSolve, HandlesWideSupernodesAndThePermutation) {
     EXPECT_GT(moved, int(factor->n) / 2);
     const Eigen::MatrixXd b = Eigen::MatrixXd::Random(kt.rows(), 3);
     EXPECT_LT(relative_error(detail::solve_supernodal(*factor, b), llt.solve(b)), 1e-12);
-    cholmod_free_factor(&factor, &common);
-    cholmod_finish(&common);
 }
 
 TEST(SupernodalSolve, RefusesAFactorItCannotRead) {
     const SparseMatrix kt = perturbed_torus_kt();
-    cholmod_common common;
-    cholmod_start(&common);
-    common.supernodal = CHOLMOD_SIMPLICIAL;
-    cholmod_sparse a = Eigen::viewAsCholmod(kt);
-    a.stype = -1;
-    cholmod_factor* factor = cholmod_analyze(&a, &common);
-    double beta[2] = {1.0, 0};
-    cholmod_factorize_p(&a, beta, nullptr, 0, factor, &common);
+    const CholmodFactor simplicial(kt, 1.0, CHOLMOD_SIMPLICIAL);
+    ASSERT_EQ(simplicial.status, CHOLMOD_OK);
     Eigen::MatrixXd x = Eigen::MatrixXd::Ones(kt.rows(), 3);
-    EXPECT_THROW(detail::apply_supernodal_inverse(*factor, x, 1), std::logic_error);
-    cholmod_free_factor(&factor, &common);
-    cholmod_finish(&common);
+    EXPECT_THROW(detail::apply_supernodal_inverse(*simplicial.factor, x, 1), std::logic_error);
 }
