@@ -6,6 +6,7 @@
 #include "core/icosphere.h"
 
 #include "core/denoise.h"
+#include "core/surface_measures.h"
 
 #include <algorithm>
 #include <cmath>
@@ -206,7 +207,7 @@ TransferFunction design_from_values(const FilterSpec& spec, const ParameterValue
     if (spec.kind == FilterKind::Denoise) {
         const int order = order_of(spec, values);
         if (!feature)
-            throw Error("Denoise with nothing selected picks its lowpass on the mesh itself (cross-validation): there is"
+            throw Error("Denoise with nothing selected picks its lowpass on the mesh itself (by its estimated risk): there is"
                         " no design before the mesh is seen; select one bump (or give a radius) to design it alone");
         const Operator op = *operator_from_values(spec, values, true);
         const DenoiseDesign d = design_denoise_from_bump(*feature, shape, order, op);
@@ -323,13 +324,18 @@ RunOutput run_filter(const FilterSpec& spec, const ParameterValues& values, cons
                           num(sampled->noise.tangential_ratio) + "; 2 and up: in every direction)");
         const auto scored = std::count_if(sampled->scores.begin(), sampled->scores.end(),
                                           [](const auto& candidate) { return candidate.second.has_value(); });
-        out.log.push_back("cross-validation (nothing selected): " + std::to_string(scored) + " of " +
+        const double sigma = std::sqrt(sampled->variance.along_normals);
+        out.log.push_back("noise along the normals: standard deviation " + num(sigma) + " = " +
+                          num(sigma / mean_edge_length(input.points, input.triangles)) +
+                          " mean edge lengths (from what the umbrella lowpass at frequency 1 removes along them)");
+        out.log.push_back("risk estimate (nothing selected): " + std::to_string(scored) + " of " +
                           std::to_string(sampled->scores.size()) +
-                          " lowpasses scored, each operator's cutoffs searched downhill from the middle one; score x 1e6 "
-                          "(lower is better; residual, degrees of freedom / noisy numbers):");
+                          " lowpasses scored, each operator's cutoffs searched downhill from the middle one; estimated "
+                          "mean squared distance to the noise-free surface x 1e6 (lower is better; residual, degrees of "
+                          "freedom / noisy numbers):");
         for (const auto& [candidate, score] : sampled->scores)
             out.log.push_back("  " + candidate.origin + ": " +
-                              (score ? num(1e6 * score->score) + " (" + num(1e6 * score->residual) + ", " +
+                              (score ? num(1e6 * score->risk) + " (" + num(1e6 * score->residual) + ", " +
                                            num(score->degrees_of_freedom / score->observations) + ")"
                                      : std::string("not scored (beyond a higher score)")) +
                               (candidate.origin == d.origin ? "  <- chosen" : ""));

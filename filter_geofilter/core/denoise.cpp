@@ -61,6 +61,13 @@ std::vector<int> search_downhill(int first, int last, const std::function<double
     }
 }
 
+Points denoise_output(const Points& noisy, Points lowpassed, const Triangles& triangles, NoiseModel model,
+                      NormalMotionReport* motion, VolumeRestoreReport* volume) {
+    if (model == NoiseModel::AlongNormals)
+        lowpassed = keep_normal_motion(noisy, lowpassed, triangles, normal_motion_max_turn_degrees, motion);
+    return restore_volume(noisy, lowpassed, triangles, volume);
+}
+
 SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& triangles, int order,
                                        std::optional<Operator> op, const FilterOptions& options) {
     const auto t0 = std::chrono::steady_clock::now();
@@ -73,6 +80,10 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
 
     SamplingDenoise best;
     best.noise = estimate_noise_direction(usable.points, usable.triangles);
+    best.variance = estimate_noise_variance(points, triangles, options);
+    // The variance of each noisy number: along the normals s^2; in every direction the noise
+    // along the normals is one of three equal axes.
+    const double noise_variance = best.variance.along_normals;
     for (const DenoiseDesign& design : candidates) best.scores.emplace_back(design, std::nullopt);
     int chosen = -1;
     // Progress: the scoring runs share the first 90 % (counted as if every candidate were
@@ -102,11 +113,12 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
             ++run;
             return out;
         };
-        const CrossValidationScore score =
-            generalized_cross_validation(points, triangles, smooth, step, denoise_probe_seed, best.noise.model);
+        const RiskEstimate score =
+            estimate_risk(points, triangles, smooth, step, denoise_probe_seed, best.noise.model, noise_variance, nullptr,
+                          [&](const Points& y, const Points& f) { return denoise_output(y, f, triangles, best.noise.model); });
         best.scores[static_cast<std::size_t>(index)].second = score;
-        if (chosen < 0 || score.score < best.scores[static_cast<std::size_t>(chosen)].second->score) chosen = index;
-        return score.score;
+        if (chosen < 0 || score.risk < best.scores[static_cast<std::size_t>(chosen)].second->risk) chosen = index;
+        return score.risk;
     };
     for (std::size_t first = 0; first < candidates.size();) {
         std::size_t last = first;
@@ -128,13 +140,9 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
             return options.progress(scoring_share + (1 - scoring_share) * fraction,
                                     "Denoise: the chosen lowpass, " + best.design.origin + ": " + stage);
         };
-    best.points = apply_filter(points, triangles, best.design.g, o, &best.report);
-    if (best.noise.model == NoiseModel::AlongNormals) {
-        best.normal_motion.emplace();
-        best.points = keep_normal_motion(points, best.points, triangles, normal_motion_max_turn_degrees,
-                                         &*best.normal_motion);
-    }
-    best.points = restore_volume(points, best.points, triangles, &best.volume);
+    if (best.noise.model == NoiseModel::AlongNormals) best.normal_motion.emplace();
+    best.points = denoise_output(points, apply_filter(points, triangles, best.design.g, o, &best.report), triangles,
+                                 best.noise.model, best.normal_motion ? &*best.normal_motion : nullptr, &best.volume);
     best.report.seconds_total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return best;
 }

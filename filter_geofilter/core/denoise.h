@@ -4,12 +4,13 @@
 #pragma once
 
 #include "butterworth.h"
-#include "cross_validation.h"
 #include "feature.h"
 #include "filter.h"
 #include "noise_direction.h"
+#include "noise_variance.h"
 #include "normal_motion.h"
 #include "operators.h"
+#include "risk_estimate.h"
 #include "volume.h"
 
 #include <cstdint>
@@ -40,8 +41,8 @@ DenoiseDesign design_denoise_from_bump(const FeatureEllipsoid& bump, FeatureShap
 // Per-vertex sampling noise with nothing selected. How much to smooth depends on the noise
 // and on the mesh (its sampling, its sharp features), so no single cutoff serves every scan:
 // measured on 16 noisy scans, the best fixed setting lost to MeshLab's default Laplacian
-// smoothing on 7. Instead a few lowpasses are tried and the one with the lowest generalized
-// cross-validation score is kept: the umbrella operator (per-vertex frequencies, in [0, 2],
+// smoothing on 7. Instead a few lowpasses are tried and the one with the lowest estimated
+// risk (risk_estimate.h: the mean squared distance to the noise-free surface) is kept: the umbrella operator (per-vertex frequencies, in [0, 2],
 // whatever the edge lengths: it follows irregular sampling) cut at these frequencies, and
 // the intrinsic Delaunay cotangent operator (geometric: it follows the surface where the
 // sampling is regular) cut at features of these radii in mean edge lengths h. Intrinsic
@@ -49,7 +50,7 @@ DenoiseDesign design_denoise_from_bump(const FeatureEllipsoid& bump, FeatureShap
 // or closer and folded fewer faces (bunny00 at 0.3 h: 6 against 15; docs/results.md section 4).
 constexpr double denoise_umbrella_cutoffs[] = {0.25, 0.35, 0.5, 0.7, 1.0};
 constexpr double denoise_cutoff_radii[] = {0.75, 1.0, 1.5, 2.0};
-// The cross-validation's probe (cross_validation.h): 1 % of the mean edge length, its signs
+// The risk estimate's probe (risk_estimate.h): 1 % of the mean edge length, its signs
 // from a fixed seed, so that Denoise is deterministic and every candidate sees the same probe.
 constexpr double denoise_probe_step = 0.01;
 constexpr std::uint64_t denoise_probe_seed = 20261201;
@@ -59,13 +60,24 @@ constexpr std::uint64_t denoise_probe_seed = 20261201;
 // increasing order.
 std::vector<DenoiseDesign> denoise_sampling_candidates(double mean_edge_length, int order, std::optional<Operator> op);
 
-// Within one operator the score fell steadily to its lowest cutoff and rose steadily after it
-// in every case measured (22 noisy scans, docs/results.md section 4), so each family is
-// searched downhill instead of scored whole: from its middle cutoff ((n - 1) / 2), the
-// neighbours of the lowest score so far are scored until neither is lower. On those scans
-// this scored 155 of 198 candidates and chose the same ones as scoring all.
+// Within one operator the estimated risk fell steadily to its lowest cutoff and rose steadily
+// after it in every case measured (22 noisy scans, docs/results.md section 4; the
+// cross-validation score used before behaved the same), so each family is searched downhill
+// instead of scored whole: from its middle cutoff ((n - 1) / 2), the neighbours of the lowest
+// score so far are scored until neither is lower. On those scans this would score 158 of 198
+// candidates and choose the same ones as scoring all.
 // `score(i)` scores candidate i of [first, last); returns the indices scored, in that order.
 std::vector<int> search_downhill(int first, int last, const std::function<double(int)>& score);
+
+// What Denoise makes of a lowpass's result on noisy points: when the noise looks along the
+// normals, only the motion along them (normal_motion.h); then each closed component given back
+// its volume (volume.h: the lowpass shrinks thin curved parts). The candidates' risk is
+// estimated on this, the surface Denoise returns, not on the lowpass alone: along the normals
+// the two rank differently: ranking the lowpasses alone left Denoise 15-33 % farther from the
+// truth on bunny00 at 0.3 and 0.5 mean edge lengths, the man at 0.3 and the diplodocus at 0.1
+// (noise along the normals; docs/results.md section 4).
+Points denoise_output(const Points& noisy, Points lowpassed, const Triangles& triangles, NoiseModel model,
+                      NormalMotionReport* motion = nullptr, VolumeRestoreReport* volume = nullptr);
 
 struct SamplingDenoise {
     Points points;         // the chosen lowpass applied to the input, its motion along the normals only
@@ -73,19 +85,19 @@ struct SamplingDenoise {
     DenoiseDesign design;  // the chosen lowpass
     FilterReport report;   // of the chosen lowpass's final run; seconds_total covers every candidate
     // Every candidate, with its score when the downhill search scored it.
-    std::vector<std::pair<DenoiseDesign, std::optional<CrossValidationScore>>> scores;
+    std::vector<std::pair<DenoiseDesign, std::optional<RiskEstimate>>> scores;
     NoiseDirection noise;  // the noise model the scores assumed
+    NoiseVariance variance;  // and the noise's variance they assumed
     std::optional<NormalMotionReport> normal_motion;  // when the noise looks along the normals
     VolumeRestoreReport volume;
 };
 
-// Scores the candidates on the mesh, each operator's family by search_downhill, each
-// candidate twice: on the input and on the input perturbed by 1 % of the mean edge length,
-// along the normals or on every axis as the noise looks from estimate_noise_direction (see
-// cross_validation.h). Applies the lowest-scoring one once more on its own (with
-// options.tolerance); when the noise looks along the normals, keeps
-// only that lowpass's motion along them (normal_motion.h); then gives each closed component
-// back its input volume (volume.h: the lowpass shrinks thin curved parts). Deterministic: the
+// Estimates the noise's direction and variance (noise_direction.h, noise_variance.h), then
+// scores the candidates on the mesh by their estimated risk, each operator's family by
+// search_downhill, each candidate twice: on the input and on the input perturbed by 1 % of the
+// mean edge length, along the normals or on every axis as the noise looks (risk_estimate.h),
+// each run finished by denoise_output. Applies the lowest-scoring one once more on its own
+// (with options.tolerance) and finishes it the same way. Deterministic: the
 // perturbation's signs come from a fixed seed. The runs solve to 1e-3 of the perturbation or
 // to options.tolerance, whichever is tighter, so that solver error does not reach the
 // scores. Throws Error like apply_filter.

@@ -15,7 +15,6 @@ namespace {
 
 constexpr double isotropic_ratio = 2.0;
 constexpr double regular_quantile = 0.05;
-constexpr int normal_smoothing_rings = 3;  // the normals' own noise stays out of the split
 constexpr int averaging_rings = 4;
 
 double quantile(std::vector<double> values, double q) {
@@ -26,6 +25,17 @@ double quantile(std::vector<double> values, double q) {
 
 } // namespace
 
+Eigen::MatrixXd smoothed_vertex_normals(const Points& points, const Triangles& triangles) {
+    const Laplacian umbrella = umbrella_laplacian(triangles, points.rows());
+    Eigen::MatrixXd normal = vertex_normals(points, triangles);
+    for (int ring = 0; ring < 3; ++ring) {
+        normal += umbrella.mass.asDiagonal() * normal - umbrella.stiffness * normal;  // + the neighbours' sum
+        for (Eigen::Index i = 0; i < normal.rows(); ++i)
+            if (const double length = normal.row(i).norm(); length > 0) normal.row(i) /= length;
+    }
+    return normal;
+}
+
 NoiseDirection estimate_noise_direction(const Points& points, const Triangles& triangles) {
     const Laplacian umbrella = umbrella_laplacian(triangles, points.rows());
     const Eigen::VectorXd& degree = umbrella.mass;
@@ -35,12 +45,7 @@ NoiseDirection estimate_noise_direction(const Points& points, const Triangles& t
         return degree.asDiagonal() * x - k * x;
     };
 
-    Eigen::MatrixXd normal = vertex_normals(points, triangles);
-    for (int ring = 0; ring < normal_smoothing_rings; ++ring) {
-        normal += neighbour_sum(normal);
-        for (Eigen::Index i = 0; i < normal.rows(); ++i)
-            if (const double length = normal.row(i).norm(); length > 0) normal.row(i) /= length;
-    }
+    const Eigen::MatrixXd normal = smoothed_vertex_normals(points, triangles);
     const Eigen::MatrixXd offset = -(degree.cwiseMax(1.0).cwiseInverse().asDiagonal() * (k * points));
     Eigen::MatrixXd parts(points.rows(), 2);  // squared normal and tangential parts
     std::vector<bool> used(points.rows());

@@ -1,6 +1,6 @@
 // Which way per-vertex noise moved the vertices, from the noisy mesh alone: only along the
 // normals (a scanner's depth error), or in every direction (points jittered in 3-D, e.g. by
-// registration or resampling). The Denoise filter's cross-validation needs to know: along the
+// registration or resampling). The Denoise filter's risk estimate needs to know: along the
 // normals, a cotangent smoother that keeps the tangential positions keeps nothing noisy;
 // jittered in 3-D, it keeps the tangential two thirds of the noise (docs/results.md section 4).
 #pragma once
@@ -35,5 +35,9 @@ struct NoiseDirection {
 // along the normals (15 cases), 2.30-4.89 in random directions (7 cases; docs/results.md
 // section 4).
 NoiseDirection estimate_noise_direction(const Points& points, const Triangles& triangles);
+
+// Unit vertex normals averaged over 3 rings of neighbours: the directions to split the
+// noise along, without the noise's own tilt of each face (zero where a vertex has none).
+Eigen::MatrixXd smoothed_vertex_normals(const Points& points, const Triangles& triangles);
 
 } // namespace geofilter

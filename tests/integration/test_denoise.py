@@ -50,11 +50,11 @@ class DenoiseTest(unittest.TestCase):
         self.assertAlmostEqual(sc, 2 / float(m.group(1)) ** 2, delta=1e-4 * sc)
         self.assertAlmostEqual(np.mean(h.radii(v)) / butterworth(2.0, sc, 4), 1.0, delta=2e-3)
 
-    def test_denoise_without_selection_picks_its_lowpass_by_cross_validation(self):
+    def test_denoise_without_selection_picks_its_lowpass_by_its_estimated_risk(self):
         steps = [h.sphere(1.0, 4), h.geofilter("GeoFilter: Denoise", useSelection=False)]
         run, v = self.run_steps(steps, "none")
         log = "\n".join(run.log)
-        m = re.search(r"cross-validation \(nothing selected\): ([0-9]) of 9 lowpasses scored", log)
+        m = re.search(r"risk estimate \(nothing selected\): ([0-9]) of 9 lowpasses scored", log)
         self.assertIsNotNone(m, run.describe())
         # Every candidate is listed, scored or not; the downhill search skips at least one of
         # the umbrella's five cutoffs.

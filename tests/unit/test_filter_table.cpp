@@ -154,7 +154,7 @@ TEST(FilterTable, DenoiseCutsAtTwiceTheSelectedBumpAndHasNoDesignWithoutOne) {
     EXPECT_EQ(g.poles.size(), 4u);
     EXPECT_EQ(operator_from_values(f, v, true), Operator::Cotangent);
     EXPECT_TRUE(logged(log, "selected bump"));
-    // Without a bump the design is made on the mesh (cross-validation), on either operator.
+    // Without a bump the design is made on the mesh (by estimated risk), on either operator.
     EXPECT_THROW(design_from_values(f, default_values(f, false), nullptr, log, &sc), Error);
     EXPECT_FALSE(operator_from_values(f, default_values(f, false), false).has_value());
 }
