@@ -204,7 +204,7 @@ FilterSpec denoise() {
             " at twice the bump's radius, and the surface is lowered onto the bumps' base (the pattern's average height"
             " goes too); larger features stay. Without: per-vertex sampling noise is removed by the same lowpass,"
             " its cutoff and operator (Taubin's umbrella or the intrinsic Delaunay cotangent) chosen on the mesh"
-            " among 9 candidates by their estimated distance to the noise-free surface (Stein's unbiased risk"
+            " among 11 candidates by their estimated distance to the noise-free surface (Stein's unbiased risk"
             " estimate; the noise's strength and direction, along the normals or in every direction, measured on"
             " the mesh; noise along the normals leaves the vertices right across the surface,"
             " so there only the lowpass's motion along the normals is kept), and closed parts keep their volume;"

@@ -48,7 +48,10 @@ DenoiseDesign design_denoise_from_bump(const FeatureEllipsoid& bump, FeatureShap
 // sampling is regular) cut at features of these radii in mean edge lengths h. Intrinsic
 // Delaunay rather than the plain cotangent: at the same cutoffs it was as close to the truth
 // or closer and folded fewer faces (bunny00 at 0.3 h: 6 against 15; docs/results.md section 4).
-constexpr double denoise_umbrella_cutoffs[] = {0.25, 0.35, 0.5, 0.7, 1.0};
+// The umbrella's two lowest cutoffs came with keeping only the motion along the normals: the
+// sideways drift of a strong lowpass no longer costs, and 0.25, the lowest before, was chosen
+// in 10 of the comparison's 22 cases.
+constexpr double denoise_umbrella_cutoffs[] = {0.125, 0.18, 0.25, 0.35, 0.5, 0.7, 1.0};
 constexpr double denoise_cutoff_radii[] = {0.75, 1.0, 1.5, 2.0};
 // The risk estimate's probe (risk_estimate.h): 1 % of the mean edge length, its signs
 // from a fixed seed, so that Denoise is deterministic and every candidate sees the same probe.
@@ -60,12 +63,12 @@ constexpr std::uint64_t denoise_probe_seed = 20261201;
 // increasing order.
 std::vector<DenoiseDesign> denoise_sampling_candidates(double mean_edge_length, int order, std::optional<Operator> op);
 
-// Within one operator the estimated risk fell steadily to its lowest cutoff and rose steadily
-// after it in every case measured (22 noisy scans, docs/results.md section 4; the
-// cross-validation score used before behaved the same), so each family is searched downhill
-// instead of scored whole: from its middle cutoff ((n - 1) / 2), the neighbours of the lowest
-// score so far are scored until neither is lower. On those scans this would score 158 of 198
-// candidates and choose the same ones as scoring all.
+// Within one operator the estimated risk of the lowpasses fell steadily to its lowest cutoff
+// and rose steadily after it in every case measured (22 noisy scans, docs/results.md section 4;
+// the cross-validation score used before behaved the same), so each family is searched
+// downhill instead of scored whole: from its middle cutoff ((n - 1) / 2), the neighbours of the
+// lowest score so far are scored until neither is lower. On those scans, with nine candidates
+// then, this would score 158 of 198 and choose the same ones as scoring all.
 // `score(i)` scores candidate i of [first, last); returns the indices scored, in that order.
 std::vector<int> search_downhill(int first, int last, const std::function<double(int)>& score);
 

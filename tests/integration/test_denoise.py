@@ -54,14 +54,16 @@ class DenoiseTest(unittest.TestCase):
         steps = [h.sphere(1.0, 4), h.geofilter("GeoFilter: Denoise", useSelection=False)]
         run, v = self.run_steps(steps, "none")
         log = "\n".join(run.log)
-        m = re.search(r"risk estimate \(nothing selected\): ([0-9]) of 9 lowpasses scored", log)
+        m = re.search(r"risk estimate \(nothing selected\): ([0-9]+) of ([0-9]+) lowpasses scored", log)
         self.assertIsNotNone(m, run.describe())
-        # Every candidate is listed, scored or not; the downhill search skips at least one of
-        # the umbrella's five cutoffs.
+        scored, candidates = int(m.group(1)), int(m.group(2))
+        # Every candidate is listed, scored or not, the umbrella's seven cutoffs and the intrinsic
+        # Delaunay's four; the downhill search skips at least one.
         listed = [line for line in run.log if re.search(r": {3}(per-vertex frequency|features of radius) ", line)]
-        self.assertEqual(len(listed), 9, log)
-        self.assertEqual(sum("not scored" not in line for line in listed), int(m.group(1)), log)
-        self.assertLess(int(m.group(1)), 9, log)
+        self.assertEqual(candidates, 11, log)
+        self.assertEqual(len(listed), candidates, log)
+        self.assertEqual(sum("not scored" not in line for line in listed), scored, log)
+        self.assertLess(scored, candidates, log)
         chosen = [line for line in run.log if line.endswith("<- chosen")]
         self.assertEqual(len(chosen), 1, log)
         m = re.search(r"design: Butterworth lowpass of order 4, cutoff sc = ([0-9.eE+-]+), operator (umbrella|intrinsic Delaunay cotangent)", log)
