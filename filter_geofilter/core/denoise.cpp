@@ -80,10 +80,9 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
 
     SamplingDenoise best;
     best.noise = estimate_noise_direction(usable.points, usable.triangles);
+    // The variance of each noisy number: in every direction too, the noise along the normals
+    // is one of three equal axes.
     best.variance = estimate_noise_variance(points, triangles, options);
-    // The variance of each noisy number: along the normals s^2; in every direction the noise
-    // along the normals is one of three equal axes.
-    const double noise_variance = best.variance.along_normals;
     for (const DenoiseDesign& design : candidates) best.scores.emplace_back(design, std::nullopt);
     int chosen = -1;
     // Progress: the scoring runs share the first 90 % (counted as if every candidate were
@@ -114,7 +113,7 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
             return out;
         };
         const RiskEstimate score =
-            estimate_risk(points, triangles, smooth, step, denoise_probe_seed, best.noise.model, noise_variance, nullptr,
+            estimate_risk(points, triangles, smooth, step, denoise_probe_seed, best.noise.model, best.variance.along_normals, nullptr,
                           [&](const Points& y, const Points& f) { return denoise_output(y, f, triangles, best.noise.model); });
         best.scores[static_cast<std::size_t>(index)].second = score;
         if (chosen < 0 || score.risk < best.scores[static_cast<std::size_t>(chosen)].second->risk) chosen = index;

@@ -15,6 +15,7 @@ namespace {
 
 constexpr double isotropic_ratio = 2.0;
 constexpr double regular_quantile = 0.05;
+constexpr int normal_smoothing_rings = 3;  // the normals' own noise stays out of the split
 constexpr int averaging_rings = 4;
 
 double quantile(std::vector<double> values, double q) {
@@ -28,7 +29,7 @@ double quantile(std::vector<double> values, double q) {
 Eigen::MatrixXd smoothed_vertex_normals(const Points& points, const Triangles& triangles) {
     const Laplacian umbrella = umbrella_laplacian(triangles, points.rows());
     Eigen::MatrixXd normal = vertex_normals(points, triangles);
-    for (int ring = 0; ring < 3; ++ring) {
+    for (int ring = 0; ring < normal_smoothing_rings; ++ring) {
         normal += umbrella.mass.asDiagonal() * normal - umbrella.stiffness * normal;  // + the neighbours' sum
         for (Eigen::Index i = 0; i < normal.rows(); ++i)
             if (const double length = normal.row(i).norm(); length > 0) normal.row(i) /= length;

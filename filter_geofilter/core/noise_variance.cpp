@@ -3,6 +3,7 @@
 #include "filter_cache.h"
 #include "surface_measures.h"
 
+#include <algorithm>
 #include <random>
 
 namespace geofilter {
