@@ -199,10 +199,12 @@ FilterSpec denoise() {
             "apply_geofilter_denoise",
             "denoise",
             FilterKind::Denoise,
-            "Removes noise without tuning. With a selection: select one bump of a pattern (bumps, ripples, a"
-            " texture) and every feature of that size and smaller is removed by a 4th-order Butterworth lowpass cut"
-            " at twice the bump's radius, and the surface is lowered onto the bumps' base (the pattern's average height"
-            " goes too); larger features stay. Without: per-vertex sampling noise is removed by the same lowpass,"
+            "Removes noise without tuning. With a selection: select one bump of a pattern (bumps, dents, a"
+            " texture) and the bumps like it are removed: what a 4th-order Butterworth lowpass cut at twice the"
+            " bump's radius removes is fitted by a pattern of Gaussian bumps (one width, fitted on the selected bump"
+            " and its neighbours; one height per bump), which is subtracted, so the bumps' volume goes and the rest"
+            " of the surface stays as it was; when the pattern does not explain the selected bump, the mesh is left"
+            " as it was and the log says why. Without: per-vertex sampling noise is removed by the same lowpass,"
             " its cutoff and operator (Taubin's umbrella or the intrinsic Delaunay cotangent) chosen on the mesh"
             " among 11 candidates by their estimated distance to the noise-free surface (Stein's unbiased risk"
             " estimate; the noise's strength and direction, along the normals or in every direction, measured on"

@@ -1,6 +1,6 @@
 #include "run_filter.h"
 
-#include "core/bump_base.h"
+#include "core/bump_pattern.h"
 #include "run_region.h"
 #include "core/ellipsoid_view.h"
 #include "core/icosphere.h"
@@ -365,14 +365,37 @@ RunOutput run_filter(const FilterSpec& spec, const ParameterValues& values, cons
     } else if (region == 0) {
         out.points = apply_filter(input.points, input.triangles, out.transfer, options, &out.report, input.cache);
         if (spec.kind == FilterKind::Denoise && out.feature) {
-            BumpBaseReport base;
-            out.points = lower_onto_bump_base(input.points, out.points, input.triangles, input.selected_faces,
-                                              denoise_radius_factor * out.feature->radius, &base);
-            out.log.push_back(base.side == 0 ? std::string("the selected bump has no height: the surface was not moved")
-                                             : std::string("bumps removed down to their base (the selected one points ") +
-                                                   (base.side > 0 ? "outwards" : "inwards") + "): the surface moved by " +
-                                                   num(base.mean_offset) + " on average, at most " +
-                                                   num(base.largest_offset));
+            // What the lowpass kept of the bumps is computed by the same lowpass, on fields of
+            // unit height: 1e-5 of the diagonal is far below what decides the fit.
+            FilterOptions field_options = options;
+            field_options.tolerance = std::max(options.tolerance, 1e-5);
+            field_options.progress = nullptr;
+            BumpPatternReport pattern;
+            const Points pattern_removed = remove_bump_pattern(
+                input.points, out.points, input.triangles, input.selected_faces, out.feature->radius,
+                [&](const Eigen::MatrixXd& field) {
+                    return filter_field(input.points, input.triangles, out.transfer, field, field_options);
+                },
+                &pattern);
+            const std::string fit = "Gaussian profile of width " + num(pattern.width) + " (the selection's radius " +
+                                    num(out.feature->radius) + "), selected bump " + num(pattern.selected_height) +
+                                    " high, " + num(100 * pattern.unexplained) + " % of it unexplained";
+            if (pattern.side == 0) {
+                out.log.push_back("the selected bump has no height above the lowpassed surface: nothing was removed");
+                out.report.warnings.push_back("the selected bump has no height: nothing was removed");
+            } else if (!pattern.removed) {
+                const std::string why = "the selected bump is not one of a pattern of bumps on a smoother surface (" + fit +
+                                        ", more than " + num(100 * bump_max_unexplained) +
+                                        " %): the surface's own detail at this size dominates; the mesh was left as it was";
+                out.log.push_back("pattern of bumps: " + why);
+                out.report.warnings.push_back(why);
+            } else {
+                out.log.push_back(std::string("pattern of bumps removed (the selected one points ") +
+                                  (pattern.side > 0 ? "outwards" : "inwards") + "): " + std::to_string(pattern.bumps) +
+                                  " bumps of " + std::to_string(pattern.candidates) + " peaks, " + fit +
+                                  "; volume removed " + num(pattern.removed_volume));
+            }
+            out.points = pattern.removed ? pattern_removed : input.points;
         }
     } else {
         // The umbrella operator's frequencies are per vertex, not 1/length^2: no feature

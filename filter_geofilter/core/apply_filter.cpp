@@ -173,6 +173,18 @@ bool same_function(const TransferFunction& a, const TransferFunction& b) {
 }
 
 void place_coordinates(detail::MeshStage& st, const FilterOptions& options);
+void split_at_fixed_boundary(detail::MeshStage& st, const FilterOptions& options);
+
+// What a run's report says of the mesh before anything is solved.
+FilterReport report_for(const detail::MeshStage& st, const FilterOptions& options) {
+    FilterReport report;
+    report.solver = options.solver;
+    report.warnings = st.warnings;
+    report.active_vertices = static_cast<int>(st.mesh.active_vertex.size());
+    report.components = st.components;
+    report.fixed_vertices = st.fixed_vertices;
+    return report;
+}
 
 std::unique_ptr<detail::MeshStage> build_mesh_stage(const Points& points, const Triangles& triangles,
                                                     const FilterOptions& options, bool keep_input) {
@@ -216,7 +228,13 @@ void place_coordinates(detail::MeshStage& st, const FilterOptions& options) {
     st.centred = mesh.points;
     for (Eigen::Index i = 0; i < mesh.points.rows(); ++i) st.centred.row(i) -= st.centroids.row(st.component[i]);
     st.size = (mesh.points.colwise().maxCoeff() - mesh.points.colwise().minCoeff()).norm();
+    split_at_fixed_boundary(st, options);
+}
 
+// What the solver filters, from st.centred: all of it, or with the boundary fixed the part
+// above the boundary's harmonic extension, on the interior.
+void split_at_fixed_boundary(detail::MeshStage& st, const FilterOptions& options) {
+    const PreparedMesh& mesh = st.mesh;
     if (options.fix_boundary) st.on_boundary = boundary_vertices(mesh.triangles, mesh.points.rows());
     st.fixed_vertices = static_cast<int>(std::count(st.on_boundary.begin(), st.on_boundary.end(), true));
     if (st.fixed_vertices == 0) {
@@ -231,7 +249,7 @@ void place_coordinates(detail::MeshStage& st, const FilterOptions& options) {
     st.harmonic = harmonic_extension(st.laplacian, st.on_boundary, st.centred);
     std::vector<bool> interior(st.on_boundary.size());
     for (size_t i = 0; i < interior.size(); ++i) interior[i] = !st.on_boundary[i];
-    st.solved_coordinates.resize(st.centred.rows() - st.fixed_vertices, 3);
+    st.solved_coordinates.resize(st.centred.rows() - st.fixed_vertices, st.centred.cols());
     for (size_t i = 0, k = 0; i < interior.size(); ++i)
         if (interior[i]) st.solved_coordinates.row(static_cast<Eigen::Index>(k++)) = st.centred.row(i) - st.harmonic.row(i);
     if (!st.interior) st.interior = restrict_laplacian(st.laplacian, interior);
@@ -291,12 +309,7 @@ Points apply_filter_unguarded(const Points& points, const Triangles& triangles, 
         return st.last->points;
     }
 
-    FilterReport report;
-    report.solver = options.solver;
-    report.warnings = st.warnings;
-    report.active_vertices = static_cast<int>(st.mesh.active_vertex.size());
-    report.components = st.components;
-    report.fixed_vertices = st.fixed_vertices;
+    FilterReport report = report_for(st, options);
     const bool had_factor = st.factors && st.factors->cholesky.has_factor();
     report.seconds_assembly = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
@@ -358,5 +371,43 @@ Points apply_filter_unguarded(const Points& points, const Triangles& triangles, 
 }
 
 } // namespace
+
+Eigen::MatrixXd filter_field(const Points& points, const Triangles& triangles, const TransferFunction& g,
+                             const Eigen::MatrixXd& field, const FilterOptions& options, FilterReport* report_out) {
+    if (field.rows() != points.rows() || field.cols() < 1)
+        throw Error("the field to filter has " + std::to_string(field.rows()) + " rows and " +
+                    std::to_string(field.cols()) + " columns; it needs one row per vertex (" +
+                    std::to_string(points.rows()) + ") and at least one column");
+    if (!field.allFinite()) throw Error("the field to filter has a NaN or infinite value");
+    detail::check_filter_options(g, options);
+    const auto t0 = std::chrono::steady_clock::now();
+    std::unique_ptr<detail::MeshStage> stage = build_mesh_stage(points, triangles, options, false);
+    detail::MeshStage& st = *stage;
+    // The field as it is, not about a centroid: constants are eigenmodes at s = 0, which G
+    // scales by G0 like any other.
+    st.centred.resize(static_cast<Eigen::Index>(st.mesh.active_vertex.size()), field.cols());
+    for (size_t i = 0; i < st.mesh.active_vertex.size(); ++i)
+        st.centred.row(static_cast<Eigen::Index>(i)) = field.row(st.mesh.active_vertex[i]);
+    st.warnings = st.mesh.warnings;
+    split_at_fixed_boundary(st, options);
+
+    FilterReport report = report_for(st, options);
+    detail::FilterProblem problem{st.solved_laplacian(), st.solved_coordinates, g, options, st.size};
+    const Eigen::MatrixXd solved = options.solver == Solver::Factored ? detail::solve_factored(problem, report)
+                                                                      : detail::solve_jacobi_pcg(problem, report);
+    Eigen::MatrixXd filtered = st.centred;  // boundary rows (when fixed) stay as they were
+    for (size_t i = 0, k = 0; i < st.mesh.active_vertex.size(); ++i)
+        if (st.on_boundary.empty() || !st.on_boundary[i])
+            filtered.row(static_cast<Eigen::Index>(i)) =
+                (st.on_boundary.empty() ? Eigen::RowVectorXd::Zero(field.cols())
+                                        : Eigen::RowVectorXd(st.harmonic.row(static_cast<Eigen::Index>(i)))) +
+                solved.row(static_cast<Eigen::Index>(k++));
+    Eigen::MatrixXd result = field;
+    for (size_t i = 0; i < st.mesh.active_vertex.size(); ++i)
+        result.row(st.mesh.active_vertex[i]) = filtered.row(static_cast<Eigen::Index>(i));
+    report.seconds_total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (report_out) *report_out = std::move(report);
+    return result;
+}
 
 } // namespace geofilter

@@ -113,4 +113,12 @@ std::string solver_used(const FilterReport& report);
 Points apply_filter(const Points& points, const Triangles& triangles, const TransferFunction& g,
                     const FilterOptions& options = {}, FilterReport* report = nullptr, FilterCache* cache = nullptr);
 
+// The same filter applied to a field on the vertices instead of their coordinates: G(M^-1 K)
+// f with the operator of `points`, one column at a time (e.g. what a lowpass of the mesh
+// keeps of a displacement). Vertices in no usable face keep their value; with fix_boundary
+// the boundary rows too. Errors are in the field's units, bounded like apply_filter's.
+Eigen::MatrixXd filter_field(const Points& points, const Triangles& triangles, const TransferFunction& g,
+                             const Eigen::MatrixXd& field, const FilterOptions& options = {},
+                             FilterReport* report = nullptr);
+
 } // namespace geofilter

@@ -781,7 +781,7 @@ std::optional<RunOutput> filter_file_on_all_ranks(MPI_Comm comm, const cli::CliO
         log.push_back("rank 0 reads the whole mesh: " + why);
         return std::optional<RunOutput>{};
     };
-    if (spec.kind == FilterKind::Denoise) return whole_mesh("Denoise works on the whole mesh (its noise estimate, volume and bump base)");
+    if (spec.kind == FilterKind::Denoise) return whole_mesh("Denoise works on the whole mesh (its noise estimate, volume and bump pattern)");
     const bool has_feature = spec.parameter(param::use_selection) && values.at(param::use_selection) != 0;
     const std::optional<Operator> op = operator_from_values(spec, values, has_feature);
     if (!op || *op != Operator::Cotangent) return whole_mesh("the operator is not the cotangent Laplacian");

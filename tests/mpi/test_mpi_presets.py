@@ -45,7 +45,7 @@ def cases(vertices):
     ear = feature_selection(vertices)
     out += [
         ("exaggerate from a selected feature", "exaggerate", ear),
-        ("denoise of a selected bump (bump base)", "denoise", ear),
+        ("denoise of a selected bump (bump pattern)", "denoise", ear),
         ("lowpass with the boundary fixed", "lowpass", ["--fix-boundary"]),
         ("butterworth order 3 (a real pole)", "butterworth", ["--order", "3"]),
         ("butterworth on the intrinsic Delaunay operator", "butterworth", ["--operator", "intrinsic"]),

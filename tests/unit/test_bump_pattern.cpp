@@ -1,0 +1,166 @@
+// Denoise with a selected bump removes the pattern of bumps like it. A sphere covered with
+// bumps (or dents) against the bare sphere: a flat lowpass alone keeps the pattern's local
+// mean height (the volume grows) and rounds the bumps' base; the fitted pattern, subtracted,
+// takes the volume and the shape back to the bare sphere's. Checked against the bare sphere,
+// never against the fit's own numbers.
+#include "core/bump_pattern.h"
+#include "core/butterworth.h"
+#include "shapes.h"
+#include "run_filter.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+using namespace geofilter;
+
+namespace {
+
+double volume(const Points& p, const Triangles& t) {
+    double v = 0;
+    for (Eigen::Index f = 0; f < t.rows(); ++f)
+        v += p.row(t(f, 0)).dot(p.row(t(f, 1)).cross(p.row(t(f, 2)))) / 6;
+    return v;
+}
+
+double rms_radius_error(const Points& p) {
+    return std::sqrt((p.rowwise().norm().array() - 1.0).square().mean());
+}
+
+struct BumpySphere {
+    Mesh mesh;
+    std::vector<int> one_bump;  // the faces within rho of the first bump's centre
+};
+
+enum class Profile { Gaussian, CosineCap };
+
+// `side` +1: bumps, -1: dents; height 0.24 rho, as in docs/results.md section 4. Gaussian
+// bumps exp(-(d/rho)^2), or cosine caps (1 + cos(pi d / (2 rho))) / 2 out to d = 2 rho, a
+// profile the fit does not assume.
+BumpySphere bumpy_sphere(int side, double rho, int count, Profile profile = Profile::Gaussian, int levels = 6) {
+    BumpySphere out{icosphere(levels, 1.0), {}};
+    std::mt19937 random(7);
+    std::normal_distribution<double> gauss;
+    std::vector<Eigen::RowVector3d> centres;
+    // At least 1.6 rho apart, as in the comparison's patterns: closer, two bumps merge into
+    // one peak, which a pattern of separate bumps does not describe.
+    while (static_cast<int>(centres.size()) < count) {
+        const Eigen::RowVector3d c = Eigen::RowVector3d(gauss(random), gauss(random), gauss(random)).normalized();
+        if (std::all_of(centres.begin(), centres.end(), [&](const auto& o) { return (o - c).norm() >= 1.6 * rho; }))
+            centres.push_back(c);
+    }
+    Points& p = out.mesh.points;
+    for (Eigen::Index v = 0; v < p.rows(); ++v) {
+        const Eigen::RowVector3d n = p.row(v).normalized();
+        double h = 0;
+        for (const auto& c : centres) {
+            const double d = (n - c).norm();
+            h += 0.24 * rho *
+                 (profile == Profile::Gaussian ? std::exp(-d * d / (rho * rho))
+                                               : (d < 2 * rho ? 0.5 * (1 + std::cos(M_PI * d / (2 * rho))) : 0.0));
+        }
+        p.row(v) = n * (1 + side * h);
+    }
+    for (Eigen::Index f = 0; f < out.mesh.triangles.rows(); ++f) {
+        bool inside = true;
+        for (int k = 0; k < 3; ++k)
+            inside = inside && (p.row(out.mesh.triangles(f, k)).normalized() - centres[0]).norm() < rho;
+        if (inside) out.one_bump.push_back(static_cast<int>(f));
+    }
+    return out;
+}
+
+
+const double bare_volume = volume(icosphere(6, 1.0).points, icosphere(6, 1.0).triangles);
+
+struct Outcome {
+    double volume_error, rms, lowpass_volume_error, lowpass_rms;
+    RunOutput run;
+};
+
+Outcome denoise_selected(const BumpySphere& s) {
+    const FilterSpec& spec = *find_filter("denoise");
+    Outcome o{0, 0, 0, 0, run_filter(spec, default_values(spec, true), {s.mesh.points, s.mesh.triangles, s.one_bump, {}})};
+    // The same Butterworth lowpass alone, for comparison.
+    const Points lowpass = apply_filter(s.mesh.points, s.mesh.triangles, o.run.transfer);
+    o.volume_error = std::abs(volume(o.run.points, s.mesh.triangles) - bare_volume) / bare_volume;
+    o.lowpass_volume_error = std::abs(volume(lowpass, s.mesh.triangles) - bare_volume) / bare_volume;
+    o.rms = rms_radius_error(o.run.points);
+    o.lowpass_rms = rms_radius_error(lowpass);
+    return o;
+}
+
+bool logged(const RunOutput& out, const std::string& text) {
+    for (const auto& line : out.log)
+        if (line.find(text) != std::string::npos) return true;
+    return false;
+}
+
+} // namespace
+
+TEST(BumpPattern, DenoiseFromOneSelectedBumpRemovesThePatternAndItsVolume) {
+    // 150 and 300 bumps at random places: at 300 their tails overlap everywhere and the
+    // surface never shows the base between them.
+    for (int count : {150, 300})
+        for (int side : {1, -1}) {
+            SCOPED_TRACE(std::to_string(count) + (side > 0 ? " bumps" : " dents"));
+            const BumpySphere s = bumpy_sphere(side, 0.08, count);
+            ASSERT_GT(s.one_bump.size(), 10u);
+            ASSERT_GT(side * (volume(s.mesh.points, s.mesh.triangles) - bare_volume), 0.005 * bare_volume);
+            const Outcome o = denoise_selected(s);
+            EXPECT_GT(o.lowpass_volume_error, 0.005);  // the offset a flat lowpass keeps ...
+            // ... gone to within the 0.3 % where the bumps stand apart (measured
+            // 0.04-0.06 %); at 300, where every bump is crowded, the fitted heights come out
+            // ~15 % low and 0.44 % remains, against 1.5 % for the lowpass.
+            if (count == 150) EXPECT_LT(o.volume_error, 0.003);
+            EXPECT_LT(o.volume_error, 0.35 * o.lowpass_volume_error);
+            EXPECT_LT(o.rms, 0.5 * o.lowpass_rms);
+            EXPECT_TRUE(logged(o.run, side > 0 ? "points outwards" : "points inwards"));
+            EXPECT_TRUE(logged(o.run, "pattern of bumps removed"));
+        }
+}
+
+TEST(BumpPattern, BumpsOfAnotherProfileAreStillMostlyRemoved) {
+    // Cosine caps: the Gaussian profile is only an approximation of them.
+    const BumpySphere s = bumpy_sphere(1, 0.08, 150, Profile::CosineCap);
+    const Outcome o = denoise_selected(s);
+    EXPECT_LT(o.volume_error, 0.25 * o.lowpass_volume_error);
+    EXPECT_LT(o.rms, 0.5 * o.lowpass_rms);
+}
+
+TEST(BumpPattern, ASurfaceWhoseOwnDetailDominatesIsLeftAsItWas) {
+    // Per-vertex noise as large as the "bump": no pattern explains the selection.
+    BumpySphere s = bumpy_sphere(1, 0.08, 1, Profile::Gaussian, 5);
+    std::mt19937 random(3);
+    std::normal_distribution<double> gauss(0.0, 0.01);
+    for (Eigen::Index v = 0; v < s.mesh.points.rows(); ++v) s.mesh.points.row(v) *= 1 + gauss(random);
+    const FilterSpec& spec = *find_filter("denoise");
+    const RunOutput out = run_filter(spec, default_values(spec, true), {s.mesh.points, s.mesh.triangles, s.one_bump, {}});
+    EXPECT_EQ(out.points, s.mesh.points);
+    EXPECT_TRUE(logged(out, "the mesh was left as it was"));
+}
+
+TEST(BumpPattern, RefusesAnEmptySelectionAndABadRadius) {
+    const Mesh s = icosphere(2, 1.0);
+    const FieldLowpass identity = [](const Eigen::MatrixXd& f) { return f; };
+    EXPECT_THROW(remove_bump_pattern(s.points, s.points, s.triangles, {}, 0.1, identity), Error);
+    EXPECT_THROW(remove_bump_pattern(s.points, s.points, s.triangles, {0}, 0.0, identity), Error);
+    EXPECT_THROW(remove_bump_pattern(s.points, s.points, s.triangles, {0}, NAN, identity), Error);
+}
+
+TEST(FilterField, ScalesASpheresCoordinateFunctionsByTheGainAtTwo) {
+    // x, y, z on the unit sphere are eigenfunctions at s = 2: G(M^-1 K) x = G(2) x. Here as a
+    // field on a sphere of radius 3, whose operator has them at 2/9.
+    Mesh big = icosphere(5, 1.0);
+    const Eigen::MatrixXd field = big.points;
+    big.points *= 3.0;
+    const TransferFunction g = design_butterworth_lowpass(1.0, 4);
+    const Eigen::MatrixXd filtered = filter_field(big.points, big.triangles, g, field);
+    const double expected = g(2.0 / 9.0);
+    EXPECT_LT((filtered - expected * field).cwiseAbs().maxCoeff(), 2e-3 * expected);
+    EXPECT_GT(std::abs(expected - 1.0), 0.001);  // the gain is not trivially 1
+    // A field of the wrong height is refused.
+    EXPECT_THROW(filter_field(big.points, big.triangles, g, field.topRows(10)), Error);
+}
