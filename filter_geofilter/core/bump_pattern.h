@@ -5,11 +5,13 @@
 // bumps crowd, their tails never let the surface show the base between them. What the
 // lowpass removed, d = (input - lowpass) . n, is the pattern minus what the lowpass kept of it:
 // d = H - LP(H). The selection says what one bump looks like, so the pattern is modelled as
-// H = sum_i a_i exp(-|x - x_i|^2 / w^2): centres x_i where d peaks, one width w fitted on the
-// selected bump, heights a_i >= 0 fitted by least squares to d + LP(H), repeated with the
-// field's own lowpass until the heights settle. Subtracting H along the normals removes the
-// bumps and their mean height; everything the model does not explain stays as it was, so
-// detail of the surface itself at the bumps' scale is kept (a lowpass would remove it too).
+// H = sum_i a_i exp(-|x - x_i|^2 / w^2): centres x_i where d peaks, heights a_i >= 0, one
+// width w. What the lowpass removes of one such bump, psi_w = phi_w - LP(phi_w), is computed
+// by the caller's lowpass on the selected bump, and sum_i a_i psi_w(|x - x_i|) (plus one
+// offset) is fitted to d by least squares; w is the width that best explains the selected
+// bump and its nearest peaks. Subtracting H along the normals removes the bumps and their mean
+// height; everything the model does not explain stays as it was, so detail of the surface
+// itself at the bumps' scale is kept (a lowpass would remove it too).
 #pragma once
 
 #include "types.h"
@@ -26,8 +28,10 @@ struct BumpPatternReport {
     double width = 0;         // w of the fitted Gaussian profile
     double selected_height = 0;  // a of the selected bump
     double removed_volume = 0;   // the integral of H over the surface
-    bool removed = false;     // false: the model did not explain the selected bump, the input was returned
-    double unexplained = 0;   // area-weighted RMS of d - (H - LP(H)) near the selected bump, relative to d's
+    bool removed = false;     // false: no pattern explains the selected bump, the input was returned
+    // Area-weighted RMS of the fit's residual near the selected bump and its nearest peaks,
+    // relative to what varies there about the fitted offset.
+    double unexplained = 0;
 };
 
 // What the caller's lowpass makes of fields on the vertices (one row per vertex, a column each):
@@ -39,17 +43,20 @@ constexpr double bump_width_range[2] = {0.5, 2.0};
 // A peak is a bump of the pattern when its fitted height is at least this share of the
 // selected bump's: smaller peaks are the surface's own detail, or noise, and stay.
 constexpr double bump_height_share = 1.0 / 3.0;
-// Above this share of the selected bump's removed detail left unexplained (RMS within two
-// radii of its peak), the pattern is not one of Gaussian bumps on a smoother surface and
-// nothing is subtracted. Measured (docs/results.md section 4): 0.06-0.21 on the procedural
-// spheres and torus; 0.83 on bunny00, whose own detail at the bumps' size dominates.
+// Above this share of what varies about the fitted offset within two radii of the selected
+// peak and its six nearest left unexplained, the pattern is not one of Gaussian bumps on a
+// smoother surface and nothing is subtracted. Measured (docs/results.md section 4): 0.03-0.15 on the procedural
+// spheres and torus; 0.57 on bunny00, whose own detail at the bumps' size dominates.
 constexpr double bump_max_unexplained = 0.5;
+// Nor is a selected bump lower than this share of its radius: that is a flat patch.
+constexpr double bump_min_height = 1e-3;
 
 // `lowpassed` is the lowpass of `input` (same triangles) that removed bumps of `bump_radius`
 // (the selected bump's measured radius); `bump_faces` the selected bump. Returns `input` with
 // the modelled pattern subtracted along the lowpassed surface's normals, or `input` itself
-// when the model leaves more than bump_max_unexplained of the selected bump unexplained
-// (report->removed says which). Vertices in no face stay. Throws Error on an empty selection or a radius that is not a positive number.
+// when the model leaves more than bump_max_unexplained unexplained or the selected bump is
+// lower than bump_min_height of its radius (report->removed says which). Vertices in no face
+// stay. Throws Error on an empty selection or a radius that is not a positive number.
 Points remove_bump_pattern(const Points& input, const Points& lowpassed, const Triangles& triangles,
                            const std::vector<int>& bump_faces, double bump_radius, const FieldLowpass& lowpass,
                            BumpPatternReport* report = nullptr);

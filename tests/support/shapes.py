@@ -29,3 +29,18 @@ def icosphere(levels, radius=1.0, center=(0.0, 0.0, 0.0)):
             new_faces += [(a, ab, ca), (b, bc, ab), (c, ca, bc), (ab, bc, ca)]
         faces = new_faces
     return np.array(verts) * radius + np.asarray(center, float), np.array(faces, dtype=np.int64)
+
+
+def bumpy_sphere(levels=5, count=60, rho=0.15, seed=5):
+    """A unit icosphere covered with `count` Gaussian bumps 0.24 rho * exp(-(d/rho)^2) high, their
+    centres at least 2 rho apart (random, fixed seed). Returns (bare, bumpy, faces, centres)."""
+    bare, faces = icosphere(levels)
+    rng = np.random.default_rng(seed)
+    centres = []
+    while len(centres) < count:
+        c = rng.normal(size=3)
+        c /= np.linalg.norm(c)
+        if all(np.linalg.norm(c - o) >= 2 * rho for o in centres):
+            centres.append(c)
+    height = sum(0.24 * rho * np.exp(-np.sum((bare - c) ** 2, axis=1) / rho ** 2) for c in centres)
+    return bare, bare * (1 + height)[:, None], faces, centres

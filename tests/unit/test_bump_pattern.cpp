@@ -111,34 +111,50 @@ TEST(BumpPattern, DenoiseFromOneSelectedBumpRemovesThePatternAndItsVolume) {
             ASSERT_GT(side * (volume(s.mesh.points, s.mesh.triangles) - bare_volume), 0.005 * bare_volume);
             const Outcome o = denoise_selected(s);
             EXPECT_GT(o.lowpass_volume_error, 0.005);  // the offset a flat lowpass keeps ...
-            // ... gone to within the 0.3 % where the bumps stand apart (measured
-            // 0.04-0.06 %); at 300, where every bump is crowded, the fitted heights come out
-            // ~15 % low and 0.44 % remains, against 1.5 % for the lowpass.
+            // ... gone to within the 0.3 % with 150 bumps (measured 0.13-0.16 %, the
+            // lowpass 1.4 %); at 300, every bump crowded by its neighbours, 0.36-0.38 % remains
+            // (the lowpass: 2.7-2.8 %).
             if (count == 150) EXPECT_LT(o.volume_error, 0.003);
-            EXPECT_LT(o.volume_error, 0.35 * o.lowpass_volume_error);
-            EXPECT_LT(o.rms, 0.5 * o.lowpass_rms);
+            EXPECT_LT(o.volume_error, 0.2 * o.lowpass_volume_error);
+            EXPECT_LT(o.rms, 0.3 * o.lowpass_rms);  // measured 0.18-0.20
             EXPECT_TRUE(logged(o.run, side > 0 ? "points outwards" : "points inwards"));
             EXPECT_TRUE(logged(o.run, "pattern of bumps removed"));
         }
 }
 
 TEST(BumpPattern, BumpsOfAnotherProfileAreStillMostlyRemoved) {
-    // Cosine caps: the Gaussian profile is only an approximation of them.
+    // Cosine caps: the Gaussian profile is only an approximation of them. Measured: volume
+    // 0.13 % off against 1.7 % for the lowpass, RMS 0.41 of the lowpass's.
     const BumpySphere s = bumpy_sphere(1, 0.08, 150, Profile::CosineCap);
     const Outcome o = denoise_selected(s);
-    EXPECT_LT(o.volume_error, 0.25 * o.lowpass_volume_error);
+    EXPECT_LT(o.volume_error, 0.2 * o.lowpass_volume_error);
     EXPECT_LT(o.rms, 0.5 * o.lowpass_rms);
 }
 
 TEST(BumpPattern, ASurfaceWhoseOwnDetailDominatesIsLeftAsItWas) {
     // Per-vertex noise as large as the "bump": no pattern explains the selection.
-    BumpySphere s = bumpy_sphere(1, 0.08, 1, Profile::Gaussian, 5);
+    BumpySphere s = bumpy_sphere(1, 0.2, 1, Profile::Gaussian, 4);
     std::mt19937 random(3);
     std::normal_distribution<double> gauss(0.0, 0.01);
     for (Eigen::Index v = 0; v < s.mesh.points.rows(); ++v) s.mesh.points.row(v) *= 1 + gauss(random);
     const FilterSpec& spec = *find_filter("denoise");
     const RunOutput out = run_filter(spec, default_values(spec, true), {s.mesh.points, s.mesh.triangles, s.one_bump, {}});
     EXPECT_EQ(out.points, s.mesh.points);
+    EXPECT_TRUE(logged(out, "the mesh was left as it was"));
+}
+
+TEST(BumpPattern, ASelectionThatIsNoBumpLeavesTheMeshAsItWas) {
+    // A cap of a bare sphere: what the lowpass removed is the same everywhere, nothing varies
+    // for bumps to explain.
+    const Mesh s = icosphere(5, 1.0);
+    std::vector<int> cap;
+    for (Eigen::Index f = 0; f < s.triangles.rows(); ++f)
+        if (s.points(s.triangles(f, 0), 2) > 0.95 && s.points(s.triangles(f, 1), 2) > 0.95 &&
+            s.points(s.triangles(f, 2), 2) > 0.95)
+            cap.push_back(static_cast<int>(f));
+    const FilterSpec& spec = *find_filter("denoise");
+    const RunOutput out = run_filter(spec, default_values(spec, true), {s.points, s.triangles, cap, {}});
+    EXPECT_EQ(out.points, s.points);
     EXPECT_TRUE(logged(out, "the mesh was left as it was"));
 }
 
