@@ -371,12 +371,9 @@ RunOutput run_filter(const FilterSpec& spec, const ParameterValues& values, cons
             field_options.tolerance = std::max(options.tolerance, 1e-5);
             field_options.progress = nullptr;
             BumpPatternReport pattern;
-            const Points pattern_removed = remove_bump_pattern(
-                input.points, out.points, input.triangles, input.selected_faces, out.feature->radius,
-                [&](const Eigen::MatrixXd& field) {
-                    return filter_field(input.points, input.triangles, out.transfer, field, field_options);
-                },
-                &pattern);
+            const Points pattern_removed =
+                remove_bump_pattern(input.points, out.points, input.triangles, input.selected_faces,
+                                    out.feature->radius, out.transfer, field_options, &pattern);
             const std::string fit = "Gaussian profile of width " + num(pattern.width) + " (the selection's radius " +
                                     num(out.feature->radius) + "), selected bump " + num(pattern.selected_height) +
                                     " high, " + num(100 * pattern.unexplained) + " % of it unexplained";

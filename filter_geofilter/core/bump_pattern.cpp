@@ -21,6 +21,10 @@ constexpr double support_in_widths = 3.0;
 // more. Measured on the comparison's densest sphere: 3 radii left 0.22 % of volume, 6 radii
 // 0.26 % at twice the fitting time.
 constexpr double lowpass_reach_in_radii = 3.0;
+// The patch the single bump is lowpassed on reaches this many bump radii past the tables.
+// Measured on the comparison's cases against the whole mesh: with 6 radii the RMS errors moved
+// by under 1 % and the volumes by under 0.01 %; with 3, the torus's RMS error by 6 %.
+constexpr double patch_margin_in_radii = 6.0;
 // The width search's ratio between neighbouring grid widths.
 constexpr double search_step = 1.1;
 // How many peaks (the selected bump's and its nearest) judge the width.
@@ -137,6 +141,34 @@ Eigen::VectorXd non_negative_solve(const SparseMatrix& gram, const Eigen::Vector
     return a.cwiseMax(0.0);
 }
 
+// The part of a mesh within a distance of a point: its vertices (indices into the mesh), their
+// positions and the faces with all three corners among them.
+struct Patch {
+    std::vector<int> vertex;
+    Points points;
+    Triangles triangles;
+};
+
+Patch patch_around(const Points& points, const Triangles& triangles, const PointGrid& grid,
+                   const Eigen::RowVector3d& centre, double radius) {
+    Patch patch;
+    std::vector<int> local(static_cast<size_t>(points.rows()), -1);
+    grid.within(centre, radius, [&](int v, double) {
+        local[v] = static_cast<int>(patch.vertex.size());
+        patch.vertex.push_back(v);
+    });
+    patch.points.resize(static_cast<Eigen::Index>(patch.vertex.size()), 3);
+    for (size_t i = 0; i < patch.vertex.size(); ++i) patch.points.row(static_cast<Eigen::Index>(i)) = points.row(patch.vertex[i]);
+    std::vector<Eigen::Vector3i> kept;
+    for (Eigen::Index f = 0; f < triangles.rows(); ++f) {
+        const int a = local[triangles(f, 0)], b = local[triangles(f, 1)], c = local[triangles(f, 2)];
+        if (a >= 0 && b >= 0 && c >= 0) kept.emplace_back(a, b, c);
+    }
+    patch.triangles.resize(static_cast<Eigen::Index>(kept.size()), 3);
+    for (size_t f = 0; f < kept.size(); ++f) patch.triangles.row(static_cast<Eigen::Index>(f)) = kept[f].transpose();
+    return patch;
+}
+
 SparseMatrix weighted_gram(const SparseMatrix& phi, const Eigen::VectorXd& area) {
     const SparseMatrix weighted = area.asDiagonal() * phi;
     return SparseMatrix(phi.transpose() * weighted);
@@ -145,8 +177,8 @@ SparseMatrix weighted_gram(const SparseMatrix& phi, const Eigen::VectorXd& area)
 } // namespace
 
 Points remove_bump_pattern(const Points& input, const Points& lowpassed, const Triangles& triangles,
-                           const std::vector<int>& bump_faces, double bump_radius, const FieldLowpass& lowpass,
-                           BumpPatternReport* report) {
+                           const std::vector<int>& bump_faces, double bump_radius, const TransferFunction& g,
+                           const FilterOptions& options, BumpPatternReport* report) {
     if (bump_faces.empty()) throw Error("no bump is selected: select one bump of the pattern to remove");
     if (!(bump_radius > 0) || !std::isfinite(bump_radius))
         throw Error("the bump radius must be a positive number (got " + format_number(bump_radius) + ")");
@@ -233,11 +265,18 @@ Points remove_bump_pattern(const Points& input, const Points& lowpassed, const T
     const double judged_reach = by_distance.back().first + 2 * bump_radius;
     grid.within(peak, judged_reach + reach, [&](int v, double) { nearby[v] = area[v]; });
 
-    Eigen::MatrixXd single = Eigen::MatrixXd::Zero(n, count);
-    grid.within(peak, reach, [&](int v, double d2) {
-        for (Eigen::Index k = 0; k < count; ++k) single(v, k) = std::exp(-d2 / (widths[k] * widths[k]));
-    });
-    const Eigen::MatrixXd single_removed = single - lowpass(single);
+    // On a patch around the selected bump, not the whole mesh: the lowpass's response to one
+    // bump fades within a few cutoff radii, and on a large scan the patch is a small part of it.
+    const Patch patch = patch_around(input, triangles, grid, peak, reach + patch_margin_in_radii * bump_radius);
+    Eigen::MatrixXd single = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(patch.vertex.size()), count);
+    for (size_t i = 0; i < patch.vertex.size(); ++i) {
+        const double d2 = (lowpassed.row(patch.vertex[i]) - peak).squaredNorm();
+        if (d2 <= reach * reach)
+            for (Eigen::Index k = 0; k < count; ++k) single(static_cast<Eigen::Index>(i), k) = std::exp(-d2 / (widths[k] * widths[k]));
+    }
+    const Eigen::MatrixXd patch_removed = single - filter_field(patch.points, patch.triangles, g, single, options);
+    Eigen::MatrixXd single_removed = Eigen::MatrixXd::Zero(n, count);
+    for (size_t i = 0; i < patch.vertex.size(); ++i) single_removed.row(patch.vertex[i]) = patch_removed.row(static_cast<Eigen::Index>(i));
     const double bin = 0.5 * mean_edge;
     const int bins = static_cast<int>(std::ceil(reach / bin)) + 1;
     Eigen::MatrixXd table = Eigen::MatrixXd::Zero(bins, count);

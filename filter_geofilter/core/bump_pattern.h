@@ -7,16 +7,16 @@
 // d = H - LP(H). The selection says what one bump looks like, so the pattern is modelled as
 // H = sum_i a_i exp(-|x - x_i|^2 / w^2): centres x_i where d peaks, heights a_i >= 0, one
 // width w. What the lowpass removes of one such bump, psi_w = phi_w - LP(phi_w), is computed
-// by the caller's lowpass on the selected bump, and sum_i a_i psi_w(|x - x_i|) (plus one
+// by the same lowpass on a patch around the selected bump, and sum_i a_i psi_w(|x - x_i|) (plus one
 // offset) is fitted to d by least squares; w is the width that best explains the selected
 // bump and its nearest peaks. Subtracting H along the normals removes the bumps and their mean
 // height; everything the model does not explain stays as it was, so detail of the surface
 // itself at the bumps' scale is kept (a lowpass would remove it too).
 #pragma once
 
+#include "filter.h"
 #include "types.h"
 
-#include <functional>
 #include <vector>
 
 namespace geofilter {
@@ -34,9 +34,6 @@ struct BumpPatternReport {
     double unexplained = 0;
 };
 
-// What the caller's lowpass makes of fields on the vertices (one row per vertex, a column each):
-// the same filter that made `lowpassed` from `input`, on the same operator.
-using FieldLowpass = std::function<Eigen::MatrixXd(const Eigen::MatrixXd&)>;
 
 // Selected bump's width search: w from bump_width_range[0] to [1] times the measured radius.
 constexpr double bump_width_range[2] = {0.5, 2.0};
@@ -51,14 +48,15 @@ constexpr double bump_max_unexplained = 0.5;
 // Nor is a selected bump lower than this share of its radius: that is a flat patch.
 constexpr double bump_min_height = 1e-3;
 
-// `lowpassed` is the lowpass of `input` (same triangles) that removed bumps of `bump_radius`
-// (the selected bump's measured radius); `bump_faces` the selected bump. Returns `input` with
+// `lowpassed` is the lowpass `g` (applied with `options`) of `input` (same triangles) that
+// removed bumps of `bump_radius` (the selected bump's measured radius); `bump_faces` the
+// selected bump. `options` also serve the lowpass of single bumps (fields of unit height). Returns `input` with
 // the modelled pattern subtracted along the lowpassed surface's normals, or `input` itself
 // when the model leaves more than bump_max_unexplained unexplained or the selected bump is
 // lower than bump_min_height of its radius (report->removed says which). Vertices in no face
 // stay. Throws Error on an empty selection or a radius that is not a positive number.
 Points remove_bump_pattern(const Points& input, const Points& lowpassed, const Triangles& triangles,
-                           const std::vector<int>& bump_faces, double bump_radius, const FieldLowpass& lowpass,
-                           BumpPatternReport* report = nullptr);
+                           const std::vector<int>& bump_faces, double bump_radius, const TransferFunction& g,
+                           const FilterOptions& options, BumpPatternReport* report = nullptr);
 
 } // namespace geofilter

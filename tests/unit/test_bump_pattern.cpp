@@ -160,10 +160,10 @@ TEST(BumpPattern, ASelectionThatIsNoBumpLeavesTheMeshAsItWas) {
 
 TEST(BumpPattern, RefusesAnEmptySelectionAndABadRadius) {
     const Mesh s = icosphere(2, 1.0);
-    const FieldLowpass identity = [](const Eigen::MatrixXd& f) { return f; };
-    EXPECT_THROW(remove_bump_pattern(s.points, s.points, s.triangles, {}, 0.1, identity), Error);
-    EXPECT_THROW(remove_bump_pattern(s.points, s.points, s.triangles, {0}, 0.0, identity), Error);
-    EXPECT_THROW(remove_bump_pattern(s.points, s.points, s.triangles, {0}, NAN, identity), Error);
+    const TransferFunction g = design_butterworth_lowpass(10.0, 4);
+    EXPECT_THROW(remove_bump_pattern(s.points, s.points, s.triangles, {}, 0.1, g, {}), Error);
+    EXPECT_THROW(remove_bump_pattern(s.points, s.points, s.triangles, {0}, 0.0, g, {}), Error);
+    EXPECT_THROW(remove_bump_pattern(s.points, s.points, s.triangles, {0}, NAN, g, {}), Error);
 }
 
 TEST(FilterField, ScalesASpheresCoordinateFunctionsByTheGainAtTwo) {
