@@ -175,6 +175,16 @@ bool same_function(const TransferFunction& a, const TransferFunction& b) {
 void place_coordinates(detail::MeshStage& st, const FilterOptions& options);
 void split_at_fixed_boundary(detail::MeshStage& st, const FilterOptions& options);
 
+// The inverse of split_at_fixed_boundary: the solver's rows back on every vertex, the fixed
+// boundary's rows exactly as they were.
+Eigen::MatrixXd join_at_fixed_boundary(const detail::MeshStage& st, const Eigen::MatrixXd& solved) {
+    if (st.on_boundary.empty()) return solved;
+    Eigen::MatrixXd joined = st.centred;
+    for (size_t i = 0, k = 0; i < st.on_boundary.size(); ++i)
+        if (!st.on_boundary[i]) joined.row(i) = st.harmonic.row(i) + solved.row(static_cast<Eigen::Index>(k++));
+    return joined;
+}
+
 // What a run's report says of the mesh before anything is solved.
 FilterReport report_for(const detail::MeshStage& st, const FilterOptions& options) {
     FilterReport report;
@@ -348,14 +358,7 @@ Points apply_filter_unguarded(const Points& points, const Triangles& triangles, 
         report.reused = std::string(kept) + (had_factor && report.seconds_factorization == 0 ? " and factor" : "");
     }
 
-    Eigen::MatrixXd filtered;
-    if (st.on_boundary.empty()) {
-        filtered = solved;
-    } else {
-        filtered = st.centred;  // boundary rows stay exactly as they were
-        for (size_t i = 0, k = 0; i < st.on_boundary.size(); ++i)
-            if (!st.on_boundary[i]) filtered.row(i) = st.harmonic.row(i) + solved.row(static_cast<Eigen::Index>(k++));
-    }
+    Eigen::MatrixXd filtered = join_at_fixed_boundary(st, solved);
     for (Eigen::Index i = 0; i < filtered.rows(); ++i) filtered.row(i) += st.centroids.row(st.component[i]);
     if (!filtered.allFinite())
         throw Error("the filter produced non-finite coordinates: the mesh is too degenerate for this filter");
@@ -395,13 +398,7 @@ Eigen::MatrixXd filter_field(const Points& points, const Triangles& triangles, c
     detail::FilterProblem problem{st.solved_laplacian(), st.solved_coordinates, g, options, st.size};
     const Eigen::MatrixXd solved = options.solver == Solver::Factored ? detail::solve_factored(problem, report)
                                                                       : detail::solve_jacobi_pcg(problem, report);
-    Eigen::MatrixXd filtered = st.centred;  // boundary rows (when fixed) stay as they were
-    for (size_t i = 0, k = 0; i < st.mesh.active_vertex.size(); ++i)
-        if (st.on_boundary.empty() || !st.on_boundary[i])
-            filtered.row(static_cast<Eigen::Index>(i)) =
-                (st.on_boundary.empty() ? Eigen::RowVectorXd::Zero(field.cols())
-                                        : Eigen::RowVectorXd(st.harmonic.row(static_cast<Eigen::Index>(i)))) +
-                solved.row(static_cast<Eigen::Index>(k++));
+    const Eigen::MatrixXd filtered = join_at_fixed_boundary(st, solved);
     Eigen::MatrixXd result = field;
     for (size_t i = 0; i < st.mesh.active_vertex.size(); ++i)
         result.row(st.mesh.active_vertex[i]) = filtered.row(static_cast<Eigen::Index>(i));

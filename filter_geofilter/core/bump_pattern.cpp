@@ -274,18 +274,19 @@ Points remove_bump_pattern(const Points& input, const Points& lowpassed, const T
         if (d2 <= reach * reach)
             for (Eigen::Index k = 0; k < count; ++k) single(static_cast<Eigen::Index>(i), k) = std::exp(-d2 / (widths[k] * widths[k]));
     }
-    const Eigen::MatrixXd patch_removed = single - filter_field(patch.points, patch.triangles, g, single, options);
-    Eigen::MatrixXd single_removed = Eigen::MatrixXd::Zero(n, count);
-    for (size_t i = 0; i < patch.vertex.size(); ++i) single_removed.row(patch.vertex[i]) = patch_removed.row(static_cast<Eigen::Index>(i));
+    const Eigen::MatrixXd single_removed = single - filter_field(patch.points, patch.triangles, g, single, options);
     const double bin = 0.5 * mean_edge;
     const int bins = static_cast<int>(std::ceil(reach / bin)) + 1;
     Eigen::MatrixXd table = Eigen::MatrixXd::Zero(bins, count);
     Eigen::VectorXd in_bin = Eigen::VectorXd::Zero(bins);
-    grid.within(peak, reach, [&](int v, double d2) {
+    for (size_t i = 0; i < patch.vertex.size(); ++i) {
+        const int v = patch.vertex[i];
+        const double d2 = (lowpassed.row(v) - peak).squaredNorm();
+        if (d2 > reach * reach) continue;
         const int b = static_cast<int>(std::sqrt(d2) / bin);
-        table.row(b) += area[v] * single_removed.row(v);
+        table.row(b) += area[v] * single_removed.row(static_cast<Eigen::Index>(i));
         in_bin[b] += area[v];
-    });
+    }
     for (int b = 0; b < bins; ++b) {
         if (in_bin[b] > 0) {
             table.row(b) /= in_bin[b];
