@@ -356,6 +356,10 @@ RunOutput run_filter(const FilterSpec& spec, const ParameterValues& values, cons
                               std::to_string(m->vertices_projected) + " vertices kept the lowpass's motion across the surface and not its sideways drift; " +
                               std::to_string(m->vertices_kept_smoothed) + " kept the lowpass's position (a face turned by more than " +
                               num(normal_motion_max_turn_degrees) + " degrees otherwise, or no normal)");
+        if (const auto& b = sampled->motion_bound)
+            out.log.push_back("motion held within " + num(denoise_motion_bound_sigmas) +
+                              " standard deviations of the noise (" + num(b->bound) + "): " +
+                              std::to_string(b->vertices_held) + " vertices would have moved farther");
         const VolumeRestoreReport& v = sampled->volume;
         out.log.push_back(v.closed_components == 0
                               ? std::string("no closed component: the volume was left as the lowpass made it")

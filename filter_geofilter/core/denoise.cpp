@@ -62,9 +62,12 @@ std::vector<int> search_downhill(int first, int last, const std::function<double
 }
 
 Points denoise_output(const Points& noisy, Points lowpassed, const Triangles& triangles, NoiseModel model,
-                      NormalMotionReport* motion, VolumeRestoreReport* volume) {
-    if (model == NoiseModel::AlongNormals)
+                      double noise_sigma, NormalMotionReport* motion, MotionBoundReport* bound,
+                      VolumeRestoreReport* volume) {
+    if (model == NoiseModel::AlongNormals) {
         lowpassed = keep_normal_motion(noisy, lowpassed, triangles, normal_motion_max_turn_degrees, motion);
+        lowpassed = bound_motion(noisy, lowpassed, denoise_motion_bound_sigmas * noise_sigma, bound);
+    }
     return restore_volume(noisy, lowpassed, triangles, volume);
 }
 
@@ -83,6 +86,7 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
     // The variance of each noisy number: in every direction too, the noise along the normals
     // is one of three equal axes.
     best.variance = estimate_noise_variance(points, triangles, options);
+    const double sigma = std::sqrt(best.variance.along_normals);
     for (const DenoiseDesign& design : candidates) best.scores.emplace_back(design, std::nullopt);
     int chosen = -1;
     // Progress: the scoring runs share the first 90 % (counted as if every candidate were
@@ -114,7 +118,7 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
         };
         const RiskEstimate score =
             estimate_risk(points, triangles, smooth, step, denoise_probe_seed, best.noise.model, best.variance.along_normals, nullptr,
-                          [&](const Points& y, const Points& f) { return denoise_output(y, f, triangles, best.noise.model); });
+                          [&](const Points& y, const Points& f) { return denoise_output(y, f, triangles, best.noise.model, sigma); });
         best.scores[static_cast<std::size_t>(index)].second = score;
         if (chosen < 0 || score.risk < best.scores[static_cast<std::size_t>(chosen)].second->risk) chosen = index;
         return score.risk;
@@ -139,9 +143,13 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
             return options.progress(scoring_share + (1 - scoring_share) * fraction,
                                     "Denoise: the chosen lowpass, " + best.design.origin + ": " + stage);
         };
-    if (best.noise.model == NoiseModel::AlongNormals) best.normal_motion.emplace();
+    if (best.noise.model == NoiseModel::AlongNormals) {
+        best.normal_motion.emplace();
+        best.motion_bound.emplace();
+    }
     best.points = denoise_output(points, apply_filter(points, triangles, best.design.g, o, &best.report), triangles,
-                                 best.noise.model, best.normal_motion ? &*best.normal_motion : nullptr, &best.volume);
+                                 best.noise.model, sigma, best.normal_motion ? &*best.normal_motion : nullptr,
+                                 best.motion_bound ? &*best.motion_bound : nullptr, &best.volume);
     best.report.seconds_total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return best;
 }

@@ -7,6 +7,7 @@
 #include "feature.h"
 #include "filter.h"
 #include "noise_direction.h"
+#include "motion_bound.h"
 #include "noise_variance.h"
 #include "normal_motion.h"
 #include "operators.h"
@@ -72,15 +73,24 @@ std::vector<DenoiseDesign> denoise_sampling_candidates(double mean_edge_length, 
 // `score(i)` scores candidate i of [first, last); returns the indices scored, in that order.
 std::vector<int> search_downhill(int first, int last, const std::function<double(int)>& score);
 
+// Noise along the normals of standard deviation s moves a vertex across the surface by more
+// than 3 s once in 370; where a lowpass moves one farther, it is reshaping the surface, not
+// removing noise: on the comparison's diplodocus at 0.1 mean edge lengths the lowpass moved
+// the toes' and the tail tip's vertices by up to 17 s and folded their faces.
+constexpr double denoise_motion_bound_sigmas = 3.0;
+
 // What Denoise makes of a lowpass's result on noisy points: when the noise looks along the
-// normals, only the motion along them (normal_motion.h); then each closed component given back
-// its volume (volume.h: the lowpass shrinks thin curved parts). The candidates' risk is
-// estimated on this, the surface Denoise returns, not on the lowpass alone: along the normals
-// the two rank differently: ranking the lowpasses alone left Denoise 15-33 % farther from the
-// truth on bunny00 at 0.3 and 0.5 mean edge lengths, the man at 0.3 and the diplodocus at 0.1
-// (noise along the normals; docs/results.md section 4).
+// normals, only the motion along them (normal_motion.h), no longer than
+// denoise_motion_bound_sigmas standard deviations of the noise along them (`noise_sigma`);
+// then each closed component given back its volume (volume.h: the lowpass shrinks thin
+// curved parts). The candidates' risk is estimated on this, the surface Denoise returns, not
+// on the lowpass alone: along the normals the two rank differently: ranking the lowpasses
+// alone left Denoise 15-33 % farther from the truth on bunny00 at 0.3 and 0.5 mean edge
+// lengths, the man at 0.3 and the diplodocus at 0.1 (noise along the normals;
+// docs/results.md section 4).
 Points denoise_output(const Points& noisy, Points lowpassed, const Triangles& triangles, NoiseModel model,
-                      NormalMotionReport* motion = nullptr, VolumeRestoreReport* volume = nullptr);
+                      double noise_sigma, NormalMotionReport* motion = nullptr, MotionBoundReport* bound = nullptr,
+                      VolumeRestoreReport* volume = nullptr);
 
 struct SamplingDenoise {
     Points points;         // the chosen lowpass applied to the input, its motion along the normals only
@@ -92,6 +102,7 @@ struct SamplingDenoise {
     NoiseDirection noise;  // the noise model the scores assumed
     NoiseVariance variance;  // and the noise's variance they assumed
     std::optional<NormalMotionReport> normal_motion;  // when the noise looks along the normals
+    std::optional<MotionBoundReport> motion_bound;    // likewise
     VolumeRestoreReport volume;
 };
 
