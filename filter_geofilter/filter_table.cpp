@@ -209,7 +209,9 @@ FilterSpec denoise() {
             " among 11 candidates by their estimated distance to the noise-free surface (Stein's unbiased risk"
             " estimate; the noise's strength and direction, along the normals or in every direction, measured on"
             " the mesh; noise along the normals leaves the vertices right across the surface,"
-            " so there only the lowpass's motion along the normals is kept), and closed parts keep their volume;"
+            " so there only the lowpass's motion along the normals is kept, and no vertex moves farther than 3"
+            " standard deviations of the noise: farther, the lowpass would be reshaping a toe or a tip, not"
+            " removing noise), and closed parts keep their volume;"
             " the log lists every candidate's score (each operator's cutoffs are searched downhill from the"
             " middle one, so those beyond a higher score are not run).",
             p};
