@@ -382,8 +382,8 @@ RunOutput run_filter(const FilterSpec& spec, const ParameterValues& values, cons
                                     num(out.feature->radius) + "), selected bump " + num(pattern.selected_height) +
                                     " high, " + num(100 * pattern.unexplained) + " % of it unexplained";
             if (pattern.side == 0) {
-                out.log.push_back("the selected bump has no height above the lowpassed surface: nothing was removed");
-                out.report.warnings.push_back("the selected bump has no height: nothing was removed");
+                out.log.push_back("the selected bump stands neither above nor below the surface around it: nothing was removed");
+                out.report.warnings.push_back("the selected bump stands neither above nor below its surroundings: nothing was removed");
             } else if (!pattern.removed) {
                 const std::string why = "the selected bump is not one of a pattern of bumps on a smoother surface (" + fit +
                                         ", more than " + num(100 * bump_max_unexplained) +

@@ -42,8 +42,10 @@ constexpr double bump_width_range[2] = {0.5, 2.0};
 constexpr double bump_height_share = 1.0 / 3.0;
 // Above this share of what varies about the fitted offset within two radii of the selected
 // peak and its six nearest left unexplained, the pattern is not one of Gaussian bumps on a
-// smoother surface and nothing is subtracted. Measured (docs/results.md section 4): 0.03-0.15 on the procedural
-// spheres and torus; 0.57 on bunny00, whose own detail at the bumps' size dominates.
+// smoother surface and nothing is subtracted. Measured (docs/results.md section 4): 0.04-0.15 on
+// the procedural spheres and torus, 0.46 on bumps of another (cosine) profile, which are still
+// mostly removed; 0.45-0.93 on the five scans with a texture of bumps, whose own detail at the
+// bumps' size is about as large as the bumps.
 constexpr double bump_max_unexplained = 0.5;
 // Nor is a selected bump lower than this share of its radius: that is a flat patch.
 constexpr double bump_min_height = 1e-3;
