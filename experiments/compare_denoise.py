@@ -140,21 +140,29 @@ def feature_cases():
     small = spread(truth, 200, 0.1, rng)
     bumpy = add_bumps(truth, c.vertex_normals(truth, tf), truth[small], 0.04, 0.01)
     cases.insert(2, ("torus r_large/r_small=7.5 n=200", truth, bumpy, tf, 0.04, bumpy[small[0]]))
-    # The scans with a texture of bumps 4 mean edge lengths wide, 0.25 x that high: bunny00 among
-    # the procedural cases, the other scans after them (so a partial run covers one scan).
+    # The scans with a texture of bumps: bunny00 among the procedural cases, the other scans
+    # after them (so a partial run covers one scan).
     for mesh in NOISE_MESHES:
-        bv, bf = c.load_normalised(mesh)
-        hb = c.mean_edge_length(bv, bf)
-        rng = np.random.default_rng([SEED, 11] if mesh == "bunny00" else [SEED, 11, NOISE_MESHES.index(mesh)])
-        rs = 4 * hb
-        small = spread(bv, 400, 2.5 * rs, rng)
-        bumpy = add_bumps(bv, c.vertex_normals(bv, bf), bv[small], rs, 0.25 * rs)
-        case = (f"{mesh} texture r={rs:.3f} n={len(small)}", bv, bumpy, bf, rs, bumpy[small[0]])
+        name, bv, bumpy, bf, rs, small = scan_texture_case(mesh)
+        case = (name, bv, bumpy, bf, rs, bumpy[small[0]])
         if mesh == "bunny00":
             cases.insert(3, case)
         else:
             cases.append(case)
     return cases
+
+
+def scan_texture_case(mesh, radius_in_edges=4.0):
+    """A scan of meshes/ with a texture of Gaussian bumps (4 mean edge lengths wide in the
+    comparison), 0.25 x that high, at least 2.5 widths apart: (name, truth v, bumpy v, f, bump
+    radius, bump centre indices)."""
+    bv, bf = c.load_normalised(mesh)
+    hb = c.mean_edge_length(bv, bf)
+    rng = np.random.default_rng([SEED, 11] if mesh == "bunny00" else [SEED, 11, NOISE_MESHES.index(mesh)])
+    rs = radius_in_edges * hb
+    small = spread(bv, 400, 2.5 * rs, rng)
+    bumpy = add_bumps(bv, c.vertex_normals(bv, bf), bv[small], rs, 0.25 * rs)
+    return f"{mesh} texture r={rs:.3f} n={len(small)}", bv, bumpy, bf, rs, small
 
 
 def own_detail(d, truth_file, truth_v, f, denoise_row, height):
