@@ -330,9 +330,15 @@ RunOutput run_filter(const FilterSpec& spec, const ParameterValues& values, cons
                           " mean edge lengths (from what the umbrella lowpass at frequency 1 removes along them)");
         out.log.push_back("risk estimate (nothing selected): " + std::to_string(scored) + " of " +
                           std::to_string(sampled->scores.size()) +
-                          " lowpasses scored, each operator's cutoffs searched downhill from the middle one; estimated "
-                          "mean squared distance to the noise-free surface x 1e6 (lower is better; residual, degrees of "
-                          "freedom / noisy numbers):");
+                          " lowpasses scored, each operator's cutoffs searched downhill from the middle one" +
+                          (sampled->scoring_patches
+                               ? ", on " + std::to_string(sampled->scoring_patches) + " patches of the mesh (a mean over " +
+                                     std::to_string(sampled->scored_vertices) + " vertices at least " +
+                                     std::to_string(denoise_scoring_margin) + " rings inside them; the mesh has more than " +
+                                     std::to_string(denoise_scoring_vertices) + ")"
+                               : std::string()) +
+                          "; estimated mean squared distance to the noise-free surface x 1e6 (lower is better; residual, "
+                          "degrees of freedom / noisy numbers):");
         for (const auto& [candidate, score] : sampled->scores)
             out.log.push_back("  " + candidate.origin + ": " +
                               (score ? num(1e6 * score->risk) + " (" + num(1e6 * score->residual) + ", " +

@@ -1,5 +1,6 @@
 #include "bump_pattern.h"
 #include "components.h"
+#include "patches.h"
 #include "surface_measures.h"
 
 #include <algorithm>
@@ -139,34 +140,6 @@ Eigen::VectorXd non_negative_solve(const SparseMatrix& gram, const Eigen::Vector
         return a;
     }
     return a.cwiseMax(0.0);
-}
-
-// The part of a mesh within a distance of a point: its vertices (indices into the mesh), their
-// positions and the faces with all three corners among them.
-struct Patch {
-    std::vector<int> vertex;
-    Points points;
-    Triangles triangles;
-};
-
-Patch patch_around(const Points& points, const Triangles& triangles, const PointGrid& grid,
-                   const Eigen::RowVector3d& centre, double radius) {
-    Patch patch;
-    std::vector<int> local(static_cast<size_t>(points.rows()), -1);
-    grid.within(centre, radius, [&](int v, double) {
-        local[v] = static_cast<int>(patch.vertex.size());
-        patch.vertex.push_back(v);
-    });
-    patch.points.resize(static_cast<Eigen::Index>(patch.vertex.size()), 3);
-    for (size_t i = 0; i < patch.vertex.size(); ++i) patch.points.row(static_cast<Eigen::Index>(i)) = points.row(patch.vertex[i]);
-    std::vector<Eigen::Vector3i> kept;
-    for (Eigen::Index f = 0; f < triangles.rows(); ++f) {
-        const int a = local[triangles(f, 0)], b = local[triangles(f, 1)], c = local[triangles(f, 2)];
-        if (a >= 0 && b >= 0 && c >= 0) kept.emplace_back(a, b, c);
-    }
-    patch.triangles.resize(static_cast<Eigen::Index>(kept.size()), 3);
-    for (size_t f = 0; f < kept.size(); ++f) patch.triangles.row(static_cast<Eigen::Index>(f)) = kept[f].transpose();
-    return patch;
 }
 
 // How far the selection stands above the surface around it, in d: the area-weighted mean over
@@ -334,7 +307,9 @@ Points remove_bump_pattern(const Points& input, const Points& lowpassed, const T
 
     // On a patch around the selected bump, not the whole mesh: the lowpass's response to one
     // bump fades within a few cutoff radii, and on a large scan the patch is a small part of it.
-    const Patch patch = patch_around(input, triangles, grid, peak, reach + patch_margin_in_radii * bump_radius);
+    std::vector<int> near_peak;
+    grid.within(peak, reach + patch_margin_in_radii * bump_radius, [&](int v, double) { near_peak.push_back(v); });
+    const Submesh patch = induced_submesh(input, triangles, near_peak);
     Eigen::MatrixXd single = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(patch.vertex.size()), count);
     for (size_t i = 0; i < patch.vertex.size(); ++i) {
         const double d2 = (lowpassed.row(patch.vertex[i]) - peak).squaredNorm();

@@ -1,6 +1,7 @@
 #include "denoise.h"
 #include "mesh_prep.h"
 #include "operators.h"
+#include "patches.h"
 #include "surface_measures.h"
 
 #include <chrono>
@@ -72,7 +73,8 @@ Points denoise_output(const Points& noisy, Points lowpassed, const Triangles& tr
 }
 
 SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& triangles, int order,
-                                       std::optional<Operator> op, const FilterOptions& options) {
+                                       std::optional<Operator> op, const FilterOptions& options,
+                                       int score_on_patches_above) {
     const auto t0 = std::chrono::steady_clock::now();
     // Refuses a bad mesh (bad indices, NaN) with the filter's own message before measuring it.
     const PreparedMesh usable = prepare_mesh(points, triangles);
@@ -88,6 +90,15 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
     best.variance = estimate_noise_variance(points, triangles, options);
     const double sigma = std::sqrt(best.variance.along_normals);
     for (const DenoiseDesign& design : candidates) best.scores.emplace_back(design, std::nullopt);
+    // What the candidates are scored on: the mesh, or patches of a large one.
+    ScoringPatches patches;
+    if (usable.points.rows() > score_on_patches_above) {
+        patches = scoring_patches(usable.triangles, usable.points, denoise_scoring_patches,
+                                  score_on_patches_above / denoise_scoring_patches, denoise_scoring_margin);
+        best.scoring_patches = patches.patches;
+    }
+    const Points& scored_points = best.scoring_patches ? patches.mesh.points : points;
+    const Triangles& scored_triangles = best.scoring_patches ? patches.mesh.triangles : triangles;
     int chosen = -1;
     // Progress: the scoring runs share the first 90 % (counted as if every candidate were
     // scored: the search skips some, so the bar jumps ahead at the end), the final run the rest.
@@ -112,14 +123,16 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
                                             "Denoise: " + design.origin + (perturbed ? " (perturbed)" : "") + ": " + stage);
                 };
             FilterCache& cache = perturbed && operator_uses_positions(design.op) ? on_perturbed : on_input;
-            Points out = apply_filter(y, triangles, design.g, o, nullptr, &cache);
+            Points out = apply_filter(y, scored_triangles, design.g, o, nullptr, &cache);
             ++run;
             return out;
         };
-        const RiskEstimate score =
-            estimate_risk(points, triangles, smooth, step, denoise_probe_seed, best.noise.model, best.variance.along_normals, nullptr,
-                          [&](const Points& y, const Points& f) { return denoise_output(y, f, triangles, best.noise.model, sigma); });
+        const RiskEstimate score = estimate_risk(
+            scored_points, scored_triangles, smooth, step, denoise_probe_seed, best.noise.model, best.variance.along_normals,
+            nullptr, [&](const Points& y, const Points& f) { return denoise_output(y, f, scored_triangles, best.noise.model, sigma); },
+            patches.counted);
         best.scores[static_cast<std::size_t>(index)].second = score;
+        best.scored_vertices = score.vertices;
         if (chosen < 0 || score.risk < best.scores[static_cast<std::size_t>(chosen)].second->risk) chosen = index;
         return score.risk;
     };

@@ -7,7 +7,11 @@
 namespace geofilter {
 
 RiskEstimate estimate_risk(const Points& y, const Triangles& triangles, const Smoother& smooth, double step,
-                           std::uint64_t seed, NoiseModel model, double noise_variance, Points* smoothed, const Finish& finish) {
+                           std::uint64_t seed, NoiseModel model, double noise_variance, Points* smoothed, const Finish& finish,
+                           const std::vector<bool>& counted) {
+    if (!counted.empty() && counted.size() != static_cast<size_t>(y.rows()))
+        throw Error("the risk estimate's vertex flags must number the vertices (" + std::to_string(y.rows()) + "), not " +
+                    std::to_string(counted.size()));
     if (!(step > 0) || !std::isfinite(step))
         throw Error("the risk estimate's probe step must be a positive number (got " + format_number(step) + ")");
     if (!(noise_variance >= 0) || !std::isfinite(noise_variance))
@@ -32,7 +36,7 @@ RiskEstimate estimate_risk(const Points& y, const Triangles& triangles, const Sm
     RiskEstimate r;
     double residual = 0, divergence = 0;
     for (Eigen::Index i = 0; i < y.rows(); ++i) {
-        if (normal.row(i).squaredNorm() == 0) continue;
+        if (normal.row(i).squaredNorm() == 0 || (!counted.empty() && !counted[static_cast<size_t>(i)])) continue;
         ++r.vertices;
         residual += (y.row(i) - f.row(i)).squaredNorm();
         divergence += probe.row(i).dot(f_perturbed.row(i) - f_raw.row(i));

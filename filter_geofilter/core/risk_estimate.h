@@ -16,11 +16,12 @@
 
 #include <cstdint>
 #include <functional>
+#include <vector>
 
 namespace geofilter {
 
 struct RiskEstimate {
-    // Mean over the vertices on faces of |y_i - F(y)_i|^2.
+    // Mean over the vertices on faces (those counted) of |y_i - F(y)_i|^2.
     double residual = 0;
     // How much of the noise F passes through: along the normals sum_i n_i . dF_i/dy_i n_i,
     // in every direction the trace of dF/dy.
@@ -54,8 +55,10 @@ using Finish = std::function<Points(const Points& y, const Points& smoothed)>;
 // overstate the risk of strong lowpasses (its guard against folds switches vertices between
 // two positions): on bunny00 with noise of 0.5 mean edge lengths along the normals it chose a
 // lowpass 1.8x farther from the truth. `smoothed` receives the (finished) result.
+// `counted` (one flag per vertex, or empty for all): the vertices the means run over (the
+// interior of patches cut out of a larger mesh: patches.h); the probe still moves them all.
 RiskEstimate estimate_risk(const Points& y, const Triangles& triangles, const Smoother& smooth, double step,
                            std::uint64_t seed, NoiseModel model, double noise_variance, Points* smoothed = nullptr,
-                           const Finish& finish = {});
+                           const Finish& finish = {}, const std::vector<bool>& counted = {});
 
 } // namespace geofilter
