@@ -4,7 +4,9 @@
 # Writes results/benchmark/benchmark.md (the table), benchmark.dat and benchmark.png.
 # Extra arguments go to geofilter_benchmark (e.g. --pcg-seconds 60, --quick; --preview prints
 # only the preview rows, in about a minute, --solve-profile only the triangular-solve profile at
-# 1M vertices, in two minutes; neither writes anything).
+# 1M vertices, in two minutes; neither writes anything; --denoise only Denoise on 160k-1M
+# vertices against Denoise scoring on the whole mesh and Taubin, in ~13 minutes, into
+# results/benchmark/denoise.md).
 set -euo pipefail
 top=$(cd "$(dirname "$0")/.." && pwd)
 build=${GEOFILTER_BUILD_DIR:-$top/build}
@@ -13,6 +15,6 @@ build=${GEOFILTER_BUILD_DIR:-$top/build}
 "$build/tests/geofilter_benchmark" --meshes "$top/meshes" --out "$top/results/benchmark" \
     --pcg-seconds 30 --pcg-full-seconds 200 "$@"
 case " $* " in
-*" --preview "*|*" --region "*|*" --solve-profile "*) ;;
+*" --preview "*|*" --region "*|*" --solve-profile "*|*" --denoise "*) ;;
 *) /usr/bin/python3 "$top/scripts/plot_benchmark.py" "$top/results/benchmark" ;;
 esac

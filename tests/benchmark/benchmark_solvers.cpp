@@ -34,7 +34,6 @@
 #include <functional>
 #include <limits>
 #include <iostream>
-#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -165,6 +164,15 @@ std::string fmt(double v, int precision = 2) {
     return os.str();
 }
 
+// Writes `text` to out_dir/file (making out_dir) and says so; 1 when out_dir cannot be made.
+int write_table(const std::string& out_dir, const std::string& file, const std::string& text) {
+    const std::string mkdir = "mkdir -p '" + out_dir + "'";
+    if (std::system(mkdir.c_str()) != 0) return 1;
+    std::ofstream(out_dir + "/" + file) << text;
+    std::cout << "\nwrote " << out_dir << "/" << file << "\n";
+    return 0;
+}
+
 // Issue 11: a region of ~1% of the mesh's vertices (the faces inside a ball around one
 // vertex), filtered at its own frequency (s1 = 2/R^2, R the ball's radius) with the default
 // band (blendWidth = auto = R), against the same filter on the whole mesh. The region's time
@@ -226,11 +234,7 @@ int region_rows(const std::vector<std::function<NamedMesh()>>& makers, const std
             std::cout << row.str() << std::flush;
         }
     }
-    std::string mkdir = "mkdir -p '" + out_dir + "'";
-    if (std::system(mkdir.c_str()) != 0) return 1;
-    std::ofstream(out_dir + "/region.md") << table.str();
-    std::cout << "\nwrote " << out_dir << "/region.md\n";
-    return 0;
+    return write_table(out_dir, "region.md", table.str());
 }
 
 // Denoise with nothing selected on large meshes (issue 10): noise of 0.3 mean edge lengths
@@ -250,11 +254,7 @@ int denoise_rows(const std::vector<std::function<NamedMesh()>>& makers, const st
         normalise(nm.mesh);
         const Mesh& clean = nm.mesh;
         const double h = mean_edge_length(clean.points, clean.triangles);
-        const Eigen::MatrixXd normal = vertex_normals(clean.points, clean.triangles);
-        std::mt19937 random(41);
-        std::normal_distribution<double> gauss(0.0, 0.3 * h);
-        Mesh noisy = clean;
-        for (Eigen::Index i = 0; i < noisy.points.rows(); ++i) noisy.points.row(i) += gauss(random) * normal.row(i);
+        const Mesh noisy{noised_along_normals(clean, 0.3 * h, 41), clean.triangles};
         const auto rms = [&](const Points& x) { return std::sqrt((x - clean.points).rowwise().squaredNorm().mean()) / h; };
         std::ostringstream row;
         row << "| " << nm.name << " | " << clean.points.rows() << " | ";
@@ -287,11 +287,7 @@ int denoise_rows(const std::vector<std::function<NamedMesh()>>& makers, const st
         table << row.str();
         std::cout << row.str() << std::flush;
     }
-    std::string mkdir = "mkdir -p '" + out_dir + "'";
-    if (std::system(mkdir.c_str()) != 0) return 1;
-    std::ofstream(out_dir + "/denoise.md") << table.str();
-    std::cout << "\nwrote " << out_dir << "/denoise.md\n";
-    return 0;
+    return write_table(out_dir, "denoise.md", table.str());
 }
 
 // What MeshLab's Preview costs: through one FilterCache, a first lowpass, the same lowpass

@@ -1,4 +1,5 @@
 #include "shapes.h"
+#include "core/surface_measures.h"
 
 #include <cmath>
 #include <random>
@@ -103,6 +104,15 @@ void perturb_radially(Mesh& mesh, double amplitude, unsigned seed) {
         const double n = p.norm();
         if (n > 0) mesh.points.row(i) = p + amplitude * unit(rng) * p / n;
     }
+}
+
+Points noised_along_normals(const Mesh& mesh, double sigma, unsigned seed) {
+    const Eigen::MatrixXd normal = vertex_normals(mesh.points, mesh.triangles);
+    std::mt19937 random(seed);
+    std::normal_distribution<double> gauss(0.0, sigma);
+    Points out = mesh.points;
+    for (Eigen::Index i = 0; i < out.rows(); ++i) out.row(i) += gauss(random) * normal.row(i);
+    return out;
 }
 
 } // namespace geofilter

@@ -20,5 +20,8 @@ Mesh grid(int n, double size);
 
 // Moves each vertex along its radial direction by amplitude * unit noise (seeded, deterministic).
 void perturb_radially(Mesh& mesh, double amplitude, unsigned seed);
+// The mesh's vertices moved along their (area-weighted) normals by Gaussian noise of standard
+// deviation sigma (seeded, deterministic): the sampling noise Denoise is measured on.
+Points noised_along_normals(const Mesh& mesh, double sigma, unsigned seed);
 
 } // namespace geofilter

@@ -11,28 +11,21 @@
 #include <cmath>
 #include <deque>
 #include <limits>
-#include <random>
 #include <set>
 
 using namespace geofilter;
 
 namespace {
 
-Points noised_along_normals(const Mesh& m, double sigma, unsigned seed) {
-    const Eigen::MatrixXd n = vertex_normals(m.points, m.triangles);
-    std::mt19937 random(seed);
-    std::normal_distribution<double> gauss(0.0, sigma);
-    Points out = m.points;
-    for (Eigen::Index i = 0; i < out.rows(); ++i) out.row(i) += gauss(random) * n.row(i);
-    return out;
-}
-
 // Edge hops from the vertices outside `inside` (breadth first over the faces' edges).
 std::vector<int> hops_from_outside(const Triangles& triangles, Eigen::Index n, const std::vector<bool>& inside) {
     std::vector<std::set<int>> adjacent(static_cast<size_t>(n));
     for (Eigen::Index f = 0; f < triangles.rows(); ++f)
-        for (int k = 0; k < 3; ++k) adjacent[triangles(f, k)].insert(triangles(f, (k + 1) % 3)),
-                                    adjacent[triangles(f, (k + 1) % 3)].insert(triangles(f, k));
+        for (int k = 0; k < 3; ++k) {
+            const int a = triangles(f, k), b = triangles(f, (k + 1) % 3);
+            adjacent[a].insert(b);
+            adjacent[b].insert(a);
+        }
     std::vector<int> hops(static_cast<size_t>(n), std::numeric_limits<int>::max());
     std::deque<int> queue;
     for (int v = 0; v < n; ++v)

@@ -31,15 +31,6 @@ namespace {
 
 double rms_distance(const Points& a, const Points& b) { return std::sqrt((a - b).rowwise().squaredNorm().mean()); }
 
-Points noised_along_normals(const Mesh& m, double sigma, unsigned seed) {
-    const Eigen::MatrixXd n = vertex_normals(m.points, m.triangles);
-    std::mt19937 random(seed);
-    std::normal_distribution<double> gauss(0.0, sigma);
-    Points out = m.points;
-    for (Eigen::Index i = 0; i < out.rows(); ++i) out.row(i) += gauss(random) * n.row(i);
-    return out;
-}
-
 // Total standard deviation sigma, as the comparison's noise in random directions.
 Points noised_in_every_direction(const Mesh& m, double sigma, unsigned seed) {
     std::mt19937 random(seed);
