@@ -39,6 +39,7 @@ const char* type_name(geofilter::ParameterType t) {
     case geofilter::ParameterType::Bool: return "Bool";
     case geofilter::ParameterType::Int: return "Int";
     case geofilter::ParameterType::Enum: return "Enum";
+    case geofilter::ParameterType::Length: return "Length";
     }
     return "?";
 }

@@ -23,7 +23,23 @@ double value_of(const FilterSpec& spec, const ParameterValues& values, const std
     if (it != values.end()) return it->second;
     const ParameterSpec* p = spec.parameter(name);
     if (!p) throw Error("internal: filter " + spec.name + " has no parameter " + name);
+    if (p->type == ParameterType::Length)
+        throw Error(name + " has no value: its default is " + num(100 * p->default_value) +
+                    " % of the mesh's bounding-box diagonal, and there is no mesh here; give it");
     return p->default_value;
+}
+
+// The frequency of a feature of radius r: 2/r^2 sphere-like, 1/r^2 cylinder-like.
+double frequency_of_radius(double radius, FeatureShape shape) {
+    return (shape == FeatureShape::Sphere ? 2.0 : 1.0) / (radius * radius);
+}
+
+// The radius parameter, refused unless it is a usable length.
+double typed_radius(const FilterSpec& spec, const ParameterValues& values) {
+    const double r = value_of(spec, values, param::radius);
+    if (!(r > 0) || !std::isfinite(r))
+        throw Error("radius must be a finite length > 0 (got " + num(r) + "): the size of the features to filter");
+    return r;
 }
 
 // An enum parameter's index, refused unless it names one of the choices.
@@ -59,51 +75,6 @@ int order_of(const FilterSpec& spec, const ParameterValues& values) {
 
 } // namespace
 
-double apply_feature_radius(const FilterSpec& spec, ParameterValues& values, double radius, const std::string& source,
-                            std::vector<std::string>& log) {
-    if (!(radius > 0) || !std::isfinite(radius))
-        throw Error(source + " must be a finite radius > 0 (got " + num(radius) + ")");
-    const bool cylinder = value_of(spec, values, param::feature_shape) == 1;
-    const double frequency = (cylinder ? 1.0 : 2.0) / (radius * radius);
-    const std::string how = std::string(cylinder ? "cylinder-like, s = 1/r^2" : "sphere-like, s = 2/r^2") +
-                            " with r = " + num(radius);
-    if (spec.kind == FilterKind::SecondOrder) {
-        const double s1 = value_of(spec, values, param::s1), s2 = value_of(spec, values, param::s2);
-        if (!(s1 > 0) || !std::isfinite(s2 / s1))
-            throw Error("s1 must be > 0 (got " + num(s1) + "): with " + source + " it sets the ratio s2/s1");
-        values[param::s1] = frequency;
-        values[param::s2] = frequency * (s2 / s1);
-        log.push_back("s1 = " + num(frequency) + " from " + source + " (" + how + "); s2 = " + num(frequency * (s2 / s1)) +
-                      " keeps s2/s1 = " + num(s2 / s1) + " (given s1 = " + num(s1) + ", s2 = " + num(s2) + ")");
-        return frequency;
-    }
-    if (spec.kind == FilterKind::PoleZero) {
-        // featureCorner indexes z1..z4 then p1..p4, as run_filter reads it.
-        std::vector<std::string> corners;
-        for (const auto& prefix : {param::zero_prefix, param::pole_prefix})
-            for (int i = 1; i <= param::max_pole_zero; ++i) corners.push_back(prefix + std::to_string(i));
-        const auto corner = size_t(value_of(spec, values, param::feature_corner));
-        if (corner >= corners.size()) throw Error("featureCorner must be an index from 0 to " + std::to_string(corners.size() - 1));
-        const std::string& corner_name = corners[corner];
-        const double given = value_of(spec, values, corner_name);
-        if (!(given > 0))
-            throw Error("featureCorner " + corner_name + " is not in use (0): give it a value, its ratio to the other"
-                        " corners is kept");
-        const double scale = frequency / given;
-        for (const auto& name : corners) values[name] = value_of(spec, values, name) * scale;
-        log.push_back("corner " + corner_name + " = " + num(frequency) + " from " + source + " (" + how +
-                      "); all corners scaled by " + num(scale));
-        return frequency;
-    }
-    if (spec.kind == FilterKind::Butterworth) {
-        values[param::cutoff] = frequency;
-        log.push_back("cutoff sc = " + num(frequency) + " from " + source + " (" + how + ")");
-        return frequency;
-    }
-    throw Error(source + " does not apply to " + spec.cli_name +
-                (spec.kind == FilterKind::Denoise ? ": select one bump instead" : ""));
-}
-
 std::optional<Operator> operator_from_values(const FilterSpec& spec, const ParameterValues& values, bool has_feature) {
     if (!spec.parameter(param::laplace_operator)) return Operator::Cotangent;
     switch (choice_of(spec, values, param::laplace_operator)) {
@@ -118,37 +89,64 @@ std::optional<Operator> operator_from_values(const FilterSpec& spec, const Param
     return Operator::Cotangent;
 }
 
-ParameterValues default_values(const FilterSpec& spec, bool has_selection) {
+ParameterValues default_values(const FilterSpec& spec, bool has_selection, double diagonal) {
     ParameterValues v;
-    for (const auto& p : spec.parameters) v[p.name] = p.default_value;
+    for (const auto& p : spec.parameters)
+        if (p.type != ParameterType::Length) v[p.name] = p.default_value;
     if (spec.parameter(param::use_selection)) v[param::use_selection] = has_selection ? 1 : 0;
+    complete_lengths(spec, v, diagonal);
     return v;
 }
 
+void complete_lengths(const FilterSpec& spec, ParameterValues& values, double diagonal) {
+    if (!std::isfinite(diagonal)) return;
+    for (const auto& p : spec.parameters)
+        if (p.type == ParameterType::Length && !values.count(p.name)) values[p.name] = p.default_value * diagonal;
+}
+
 TransferFunction design_from_values(const FilterSpec& spec, const ParameterValues& values, const FeatureEllipsoid* feature,
-                                    std::vector<std::string>& log, double* s1_used) {
+                                    std::vector<std::string>& log, double* s1_used, double* s2_used) {
     const FeatureShape shape = shape_of(spec, values);
     const char* shape_name = shape == FeatureShape::Sphere ? "sphere-like, s = 2/r^2" : "cylinder-like, s = 1/r^2";
     if (spec.kind == FilterKind::SecondOrder) {
         SecondOrderSpec s{value_of(spec, values, param::s1), value_of(spec, values, param::s2),
                           value_of(spec, values, param::G0), value_of(spec, values, param::G1),
                           value_of(spec, values, param::Ginf)};
+        if (!(s.s1 >= 0) || !(s.s2 >= 0) || !std::isfinite(s.s1) || !std::isfinite(s.s2))
+            throw Error("s1 and s2 must be finite frequencies >= 0 (got s1 = " + num(s.s1) + ", s2 = " + num(s.s2) +
+                        "); 0 = from the feature radius");
+        if (s.s1 == 0 && s.s2 > 0)
+            throw Error("s2 = " + num(s.s2) + " is typed but s1 is 0: type s1 too (the frequencies are then used as"
+                        " typed), or leave s2 at 0 to design from the feature radius");
+        // A size gives s1; the curve keeps its shape: the typed ratio s2/s1, or the preset's.
+        const bool typed_ratio = s.s1 > 0 && s.s2 > 0;
+        const double ratio = typed_ratio ? s.s2 / s.s1 : spec.reference.s2 / spec.reference.s1;
+        const std::string ratio_note = " keeps " + std::string(typed_ratio ? "the typed" : "this filter's") +
+                                       " ratio s2/s1 = " + num(ratio);
         if (feature) {
-            if (!(s.s1 > 0) || !std::isfinite(s.s2 / s.s1))
-                throw Error("s1 must be > 0 (got " + num(s.s1) + "): with useSelection it sets the ratio s2/s1");
             const double measured = feature->frequency(shape);
-            const double ratio = s.s2 / s.s1;
             log.push_back("s1 = " + num(measured) + " from " + std::to_string(feature->face_count) + " selected faces (" +
-                          shape_name + "), instead of the typed " + num(s.s1) + "; s2 = " + num(measured * ratio) +
-                          " keeps the typed ratio s2/s1 = " + num(ratio) + " (turn useSelection off to use the typed values)");
+                          shape_name + ", r = " + num(feature->radius) + ")" +
+                          (s.s1 > 0 ? ", instead of the typed " + num(s.s1) : std::string()) + "; s2 = " +
+                          num(measured * ratio) + ratio_note +
+                          " (turn useSelection off to use the radius or the typed frequencies)");
             s.s1 = measured;
             s.s2 = measured * ratio;
+        } else if (s.s1 > 0) {
+            if (s.s2 == 0) s.s2 = s.s1 * ratio;
+            log.push_back("s1 = " + num(s.s1) + ", s2 = " + num(s.s2) + (typed_ratio ? " as typed" : " (s1 as typed; s2" + ratio_note + ")") +
+                          "; the feature radius is not used");
         } else {
-            log.push_back("s1 = " + num(s.s1) + ", s2 = " + num(s.s2) + " as given (useSelection off)");
+            const double r = typed_radius(spec, values);
+            s.s1 = frequency_of_radius(r, shape);
+            s.s2 = s.s1 * ratio;
+            log.push_back("s1 = " + num(s.s1) + " from the feature radius r = " + num(r) + " (" + shape_name + "); s2 = " +
+                          num(s.s2) + ratio_note);
         }
         log.push_back("design: s1 = " + num(s.s1) + ", s2 = " + num(s.s2) + ", G0 = " + num(s.G0) + ", G1 = " + num(s.G1) +
                       ", Ginf = " + num(s.Ginf));
         if (s1_used) *s1_used = s.s1;
+        if (s2_used) *s2_used = s.s2;
         return design_second_order(s);
     }
     if (spec.kind == FilterKind::PoleZero) {
@@ -175,6 +173,20 @@ TransferFunction design_from_values(const FilterSpec& spec, const ParameterValue
                           std::to_string(feature->face_count) + " selected faces (" + shape_name + "), instead of the typed " +
                           num(corners[corner]) + "; all corners scaled by " + num(scale));
             if (s1_used) *s1_used = measured;
+        } else if (const double r = value_of(spec, values, param::radius); r != 0) {
+            if (!(r > 0) || !std::isfinite(r))
+                throw Error("radius must be a finite length >= 0 (got " + num(r) + "); 0 = the corners as typed");
+            const int corner = choice_of(spec, values, param::feature_corner);
+            if (corners[corner] == 0)
+                throw Error("featureCorner names a corner frequency that is not in use (0): give it a value, its ratio to"
+                            " the others is kept");
+            const double sized = frequency_of_radius(r, shape), scale = sized / corners[corner];
+            for (double& c : corners) c *= scale;
+            log.push_back("corner " + std::string(corner < param::max_pole_zero ? "z" : "p") +
+                          std::to_string(corner % param::max_pole_zero + 1) + " = " + num(sized) +
+                          " from the feature radius r = " + num(r) + " (" + shape_name + "); all corners scaled by " +
+                          num(scale));
+            if (s1_used) *s1_used = sized;
         }
         for (int i = 0; i < param::max_pole_zero; ++i) {
             if (corners[i] > 0) pz.zeros.push_back(corners[i]);
@@ -189,11 +201,18 @@ TransferFunction design_from_values(const FilterSpec& spec, const ParameterValue
         const int order = order_of(spec, values);
         double cutoff = value_of(spec, values, param::cutoff);
         const Operator op = *operator_from_values(spec, values, feature != nullptr);
+        if (!(cutoff >= 0) || !std::isfinite(cutoff))
+            throw Error("cutoff must be a finite frequency >= 0 (got " + num(cutoff) + "); 0 = from the feature radius");
         if (feature) {
             cutoff = feature->frequency(shape);
-            log.push_back("cutoff sc = " + num(cutoff) + " from the selection (" + shape_name + ")");
+            log.push_back("cutoff sc = " + num(cutoff) + " from the selection (" + shape_name + ", r = " +
+                          num(feature->radius) + ")");
+        } else if (cutoff > 0) {
+            log.push_back("cutoff sc = " + num(cutoff) + " as typed; the feature radius is not used");
         } else {
-            log.push_back("cutoff sc = " + num(cutoff) + " as given (useSelection off)");
+            const double r = typed_radius(spec, values);
+            cutoff = frequency_of_radius(r, shape);
+            log.push_back("cutoff sc = " + num(cutoff) + " from the feature radius r = " + num(r) + " (" + shape_name + ")");
         }
         TransferFunction g = design_butterworth_lowpass(cutoff, order);
         log.push_back("design: Butterworth lowpass of order " + std::to_string(order) + ", cutoff sc = " + num(cutoff) +
@@ -246,12 +265,29 @@ void log_response(const FilterSpec& spec, const ParameterValues& values, RunOutp
 
 } // namespace
 
+namespace {
+
+// The feature radius the design took its frequency from when nothing was measured: 0 where
+// the frequencies were typed (s1, cutoff) or the filter has no radius.
+double radius_behind_design(const FilterSpec& spec, const ParameterValues& values) {
+    if (!spec.parameter(param::radius) || !values.count(param::radius)) return 0;
+    switch (spec.kind) {
+    case FilterKind::SecondOrder: return value_of(spec, values, param::s1) == 0 ? values.at(param::radius) : 0;
+    case FilterKind::Butterworth: return value_of(spec, values, param::cutoff) == 0 ? values.at(param::radius) : 0;
+    case FilterKind::PoleZero: return values.at(param::radius);
+    default: return 0;
+    }
+}
+
+} // namespace
+
 RunOutput design_run(const FilterSpec& spec, const ParameterValues& values, const std::optional<FeatureEllipsoid>& feature) {
     RunOutput out;
     out.feature = feature;
+    out.radius_used = feature ? feature->radius : radius_behind_design(spec, values);
     if (feature) out.log.push_back("feature: " + describe_feature(*feature));
     out.op = *operator_from_values(spec, values, feature.has_value());
-    out.transfer = design_from_values(spec, values, feature ? &*feature : nullptr, out.log, &out.s1_used);
+    out.transfer = design_from_values(spec, values, feature ? &*feature : nullptr, out.log, &out.s1_used, &out.s2_used);
     log_response(spec, values, out);
     return out;
 }
@@ -270,7 +306,9 @@ void log_filter_report(RunOutput& out, const FilterOptions& options) {
     if (!r.reused.empty()) out.log.push_back("reused from the previous run on this mesh: " + r.reused);
 }
 
-RunOutput run_filter(const FilterSpec& spec, const ParameterValues& values, const RunInput& input) {
+RunOutput run_filter(const FilterSpec& spec, const ParameterValues& given, const RunInput& input) {
+    ParameterValues values = given;
+    complete_lengths(spec, values, bounding_box_diagonal(input.points));
     const bool use_selection = spec.kind == FilterKind::Measure || value_of(spec, values, param::use_selection) != 0;
     std::optional<FeatureEllipsoid> feature;
     if (use_selection) {

@@ -8,6 +8,7 @@
 #include "core/types.h"
 #include "filter_table.h"
 
+#include <limits>
 #include <map>
 #include <optional>
 #include <string>
@@ -42,29 +43,31 @@ struct RunOutput {
     std::optional<Mesh> ellipsoid_mesh;         // Measure: the fitted ellipsoid as a mesh
     TransferFunction transfer;                  // the designed G(s) (filters only)
     double s1_used = 0;                         // the frequency actually used
+    double s2_used = 0;                         // second-order filters: the unit-gain frequency used
+    double radius_used = 0;                     // the feature radius behind s1_used (0: typed frequencies)
     Operator op = Operator::Cotangent;          // the Laplacian the filter ran on
     FilterReport report;
     std::vector<std::string> log;               // human-readable lines, in order
 };
 
 // Default parameter values for `spec` (the table's, or the adapter's choice for
-// useSelection, which should follow "has the mesh selected faces").
-ParameterValues default_values(const FilterSpec& spec, bool has_selection);
+// useSelection, which should follow "has the mesh selected faces"). Lengths are the table's
+// fraction of `diagonal`, the mesh's bounding-box diagonal; without one (NaN) they are left
+// out, and run_filter takes them from the mesh it filters.
+ParameterValues default_values(const FilterSpec& spec, bool has_selection,
+                               double diagonal = std::numeric_limits<double>::quiet_NaN());
 
-// Sets the frequency of a feature of radius `radius` as useSelection does with a measured
-// one: s = 2/r^2 (sphere-like) or 1/r^2 (cylinder-like, by featureShape) becomes s1 with s2
-// keeping its ratio s2/s1, or becomes the featureCorner of a pole-zero filter with the other
-// corners keeping their ratios. `source` names where the radius came from in the log and
-// in errors (e.g. "--radius"). Returns that frequency. Throws Error.
-double apply_feature_radius(const FilterSpec& spec, ParameterValues& values, double radius, const std::string& source,
-                            std::vector<std::string>& log);
+// Gives every Length parameter that has no value its default on a mesh of this diagonal.
+void complete_lengths(const FilterSpec& spec, ParameterValues& values, double diagonal);
 
-// The transfer function for the given values, with the frequency taken from `feature`
-// when given. Throws Error naming the parameter at fault.
+// The transfer function for the given values. The frequency comes from `feature` when given,
+// else from typed frequencies (s1, cutoff; corners when radius is 0), else from the feature
+// radius. Throws Error naming the parameter at fault.
 // Denoise without a feature has no design of its own: it picks one on the mesh (run_filter,
 // denoise_sampling_noise), so it is refused here.
 TransferFunction design_from_values(const FilterSpec& spec, const ParameterValues& values,
-                                    const FeatureEllipsoid* feature, std::vector<std::string>& log, double* s1_used = nullptr);
+                                    const FeatureEllipsoid* feature, std::vector<std::string>& log, double* s1_used = nullptr,
+                                    double* s2_used = nullptr);
 
 // The Laplacian a filter runs on: the `operator` parameter, or the filter's own choice when
 // it is Automatic (or the filter has no such parameter: the paper's cotangent). None: Denoise

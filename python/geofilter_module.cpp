@@ -129,23 +129,18 @@ py::dict feature_of(const FeatureEllipsoid& e) {
 }
 
 py::tuple run(const FilterSpec& spec, const py::object& v, const py::object& f, const py::object& selected,
-              const py::object& radius, const py::kwargs& kwargs) {
+              const py::kwargs& kwargs) {
     const Points points = points_from(v);
     const Triangles triangles = triangles_from(f);
     const std::vector<int> faces = faces_from(selected);
     ParameterValues values = values_from(spec, kwargs, !faces.empty());
-    std::vector<std::string> log;
-    if (!radius.is_none()) {
-        if (!faces.empty() && values.count(param::use_selection) && values.at(param::use_selection) != 0)
-            throw py::value_error("radius and selected_faces both give the feature: pass one, or useSelection=False");
-        apply_feature_radius(spec, values, py::cast<double>(radius), "radius=", log);
-    }
+    if (kwargs.contains(param::radius) && !faces.empty() && values.at(param::use_selection) != 0)
+        throw py::value_error("radius and selected_faces both give the feature: pass one, or useSelection=False");
     RunOutput out;
     {
         py::gil_scoped_release release;  // the solve may take seconds: let other threads run
         out = run_filter(spec, values, RunInput{points, triangles, faces, {}, nullptr, nullptr, {}, exact_pair_factorization()});
     }
-    out.log.insert(out.log.begin(), log.begin(), log.end());
     if (spec.kind == FilterKind::Measure) return py::make_tuple(feature_of(*out.feature), report_of(out));
     return py::make_tuple(array_from(out.points), report_of(out));
 }
@@ -163,12 +158,16 @@ PYBIND11_MODULE(geofilter, m) {
         const FilterSpec* s = &spec;
         std::string doc = spec.name + ". " + spec.description + "\n\nParameters (keyword, table defaults):";
         for (const auto& p : spec.parameters)
-            doc += "\n  " + p.name + " = " + format_number(p.default_value) + ": " + p.help;
+            doc += "\n  " + p.name + " = " +
+                   (p.type == ParameterType::Length && p.default_value != 0
+                        ? format_number(100 * p.default_value) + " % of the diagonal"
+                        : format_number(p.default_value)) +
+                   ": " + p.help;
         if (spec.kind == FilterKind::Measure) {
             m.def(
                 spec.cli_name.c_str(),
                 [s](const py::object& v, const py::object& f, const py::object& selected) {
-                    return run(*s, v, f, selected, py::none(), py::kwargs());
+                    return run(*s, v, f, selected, py::kwargs());
                 },
                 py::arg("V"), py::arg("F"), py::arg("selected_faces"),
                 ("Fits the feature ellipsoid to the selected faces (indices or a boolean mask); returns (feature, report)."
@@ -177,25 +176,25 @@ PYBIND11_MODULE(geofilter, m) {
         }
         m.def(
             spec.cli_name.c_str(),
-            [s](const py::object& v, const py::object& f, const py::object& selected, const py::object& radius,
-                const py::kwargs& kwargs) { return run(*s, v, f, selected, radius, kwargs); },
+            [s](const py::object& v, const py::object& f, const py::object& selected, const py::kwargs& kwargs) {
+                return run(*s, v, f, selected, kwargs);
+            },
             py::arg("V"), py::arg("F"), py::kw_only(), py::arg("selected_faces") = py::none(),
-            py::arg("radius") = py::none(),
-            ("Returns (V_filtered, report). selected_faces (indices or a boolean mask) sets the feature frequency as in"
-             " MeshLab (useSelection); radius=r sets it from a radius instead.\n\n" + doc).c_str());
+            ("Returns (V_filtered, report). selected_faces (indices or a boolean mask) is the feature, as MeshLab's"
+             " selection (useSelection); radius=r gives its size instead (default: a few % of the diagonal).\n\n" +
+             doc).c_str());
     }
 
     m.def(
         "design",
-        [](const std::string& name, const py::object& radius, const py::kwargs& kwargs) {
+        [](const std::string& name, const py::kwargs& kwargs) {
             const FilterSpec* spec = find_filter(name);
             if (!spec || spec->kind == FilterKind::Measure) throw py::value_error("no GeoFilter filter is called '" + name + "'");
-            ParameterValues values = values_from(*spec, kwargs, false);
+            const ParameterValues values = values_from(*spec, kwargs, false);
             std::vector<std::string> log;
-            if (!radius.is_none()) apply_feature_radius(*spec, values, py::cast<double>(radius), "radius=", log);
             return design_from_values(*spec, values, nullptr, log);
         },
-        py::arg("name"), py::kw_only(), py::arg("radius") = py::none(),
+        py::arg("name"),
         "The transfer function G(s) a filter would apply, from the same parameters (no mesh needed).");
 
     py::class_<TransferFunction>(m, "TransferFunction")

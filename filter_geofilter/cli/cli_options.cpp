@@ -79,6 +79,11 @@ std::vector<std::set<std::string>> choice_words(const ParameterSpec& p) {
 double parse_parameter(const std::string& option, const ParameterSpec& p, const std::string& text) {
     switch (p.type) {
     case ParameterType::Float: return parse_number(option, text);
+    case ParameterType::Length: {
+        const double v = parse_number(option, text);
+        if (v < 0) throw UsageError(option + " must be a length >= 0, got '" + text + "'");
+        return v;
+    }
     case ParameterType::Int: {
         const double v = parse_number(option, text);
         if (v != std::floor(v)) throw UsageError(option + " wants a whole number, got '" + text + "'");
@@ -120,7 +125,7 @@ struct ToolOption {
 };
 const ToolOption tool_options[] = {
     {"--help", false, false},          {"--quiet", false, false},        {"--overwrite-input", false, false},
-    {"--plot", true, false},           {"--radius", true, false},        {"--select-sphere", true, true},
+    {"--plot", true, false},           {"--select-sphere", true, true},
     {"--select-box", true, true},      {"--select-stored", false, false}, {"--zeros", true, false},
     {"--poles", true, false},
 };
@@ -239,6 +244,8 @@ std::string first_sentence(const std::string& text) {
 std::string default_text(const ParameterSpec& p) {
     if (p.type == ParameterType::Enum) return choice_keywords(p)[size_t(p.default_value)];
     if (p.type == ParameterType::Bool) return p.default_value != 0 ? "yes" : "no";
+    if (p.type == ParameterType::Length && p.default_value != 0)
+        return format_number(100 * p.default_value) + " % of the diagonal";
     return format_number(p.default_value);
 }
 
@@ -306,10 +313,6 @@ CliOptions parse_command_line(const std::vector<std::string>& args) {
         else if (t.option == "--plot") {
             if (measure) throw UsageError("--plot draws a filter's G(s): the measure preset has none");
             o.plot = v;
-        } else if (t.option == "--radius") {
-            if (measure) throw UsageError("--radius gives the feature's size: measure would have nothing to measure");
-            o.radius = parse_number(t.option, v);
-            if (!(*o.radius > 0)) throw UsageError("--radius must be > 0, got '" + v + "'");
         } else if (t.option == "--select-sphere") {
             const auto n = parse_list(t.option, v, 4, 4, "cx,cy,cz,r");
             if (!(n[3] > 0)) throw UsageError("--select-sphere radius must be > 0, got " + format_number(n[3]));
@@ -349,7 +352,11 @@ CliOptions parse_command_line(const std::vector<std::string>& args) {
     // frequency (typed s1, selected region) instead of the selection.
     const auto region = set_values.find(param::region);
     const bool selected_region = region != set_values.end() && region->second == 1;
-    if (o.radius && o.selects_region() && !selected_region)
+    const bool radius_given = set_values.count(param::radius) > 0;
+    if (radius_given && (set_values.count(param::s1) || set_values.count(param::cutoff)))
+        throw UsageError(std::string("--radius and ") + (set_values.count(param::s1) ? "--s1" : "--cutoff") +
+                         " both give the feature's frequency: give one");
+    if (radius_given && o.selects_region() && !selected_region)
         throw UsageError("--radius and --select-* both give the feature: use one of them (or --region selected to"
                          " filter only the selection at the --radius frequency)");
     if (measure && !o.selects_region())
@@ -366,7 +373,8 @@ CliOptions parse_command_line(const std::vector<std::string>& args) {
 
     o.values = default_values(spec, o.selects_region());
     for (const auto& [name, value] : set_values) o.values[name] = value;
-    if (selected_region && (o.radius || set_values.count(param::s1))) o.values[param::use_selection] = 0;
+    if (selected_region && (radius_given || set_values.count(param::s1) || set_values.count(param::cutoff)))
+        o.values[param::use_selection] = 0;
     return o;
 }
 
@@ -388,14 +396,14 @@ std::string help_text(const FilterSpec* preset) {
               "  --s1 S --s2 S --G0 G --G1 G --Ginf G   the five numbers of eq. 15 (second-order presets)\n"
               "  --zeros A,B,.. --poles C,D,.. --G0 G   polezero: up to 4 zeros and 4 poles (or --z1..--p4)\n"
               "  --solver factored|pcg  --tolerance T  --max-iterations N\n"
-              "\nthe feature frequency (instead of --s1, or polezero's --feature-corner):\n"
-              "  --radius R                 a feature of radius R: s = 2/R^2 (--feature-shape sphere)\n"
-              "                             or 1/R^2 (--feature-shape cylinder); s2 keeps its ratio s2/s1\n"
+              "\nthe feature's size (every filter but denoise):\n"
+              "  --radius R                 the feature radius in mesh units [a few % of the diagonal]:\n"
+              "                             s = 2/R^2 (--feature-shape sphere) or 1/R^2 (cylinder)\n"
               "  --select-sphere CX,CY,CZ,R the faces whose three vertices lie in this ball\n"
               "  --select-box X0,Y0,Z0,X1,Y1,Z1  ... in this box (both repeatable: the union is taken)\n"
               "  --select-stored            the face selection stored in a PLY input (MeshLab: save with\n"
               "                             face Flags); the selection is measured by an ellipsoid\n"
-              "\nwhere to filter (issue 11):\n"
+              "\nwhere to filter:\n"
               "  --region whole|selected|quality  the whole mesh [whole]; only the --select-* faces, fading\n"
               "                             to untouched across --blend-width; or the PLY input's vertex\n"
               "                             quality as a weight in [0, 1]. With --region selected, --radius\n"
@@ -426,8 +434,7 @@ std::string help_text(const FilterSpec* preset) {
                           " printed, and the ellipsoid written to ELLIPSOID_OUTPUT if given.", 0);
     else
         os << "\n" << wrap("Here useSelection is on when --select-sphere, --select-box or --select-stored is given;"
-                          " --radius R does the same for a feature of known radius R. Otherwise the frequencies are"
-                          " used as given.", 0);
+                          " Otherwise --radius sets the feature's size, unless the frequencies are typed.", 0);
     if (!preset->parameters.empty()) os << "\noptions (default in brackets):\n";
     for (const auto& p : preset->parameters) {
         if (!has_own_option(p)) continue;

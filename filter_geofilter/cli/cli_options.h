@@ -32,7 +32,6 @@ struct CliOptions {
     ParameterValues values;            // every parameter of the preset; useSelection follows the regions
     std::string input, output;         // output may be empty for `measure`
     std::string plot;                  // --plot PNG, empty if not asked
-    std::optional<double> radius;      // --radius
     std::vector<SphereRegion> spheres; // --select-sphere (repeatable: the union is selected)
     std::vector<BoxRegion> boxes;      // --select-box
     bool select_stored = false;        // --select-stored

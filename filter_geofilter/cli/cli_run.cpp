@@ -69,7 +69,7 @@ TransferPlot make_plot(const FilterSpec& spec, const ParameterValues& values, co
     plot.g = out.transfer;
     const std::string feature_note = feature.known ? " (feature, r = " + num(feature.radius) + ")" : "";
     if (spec.kind == FilterKind::SecondOrder) {
-        const double s1 = values.at(param::s1), scale = out.s1_used / s1, s2 = values.at(param::s2) * scale;
+        const double s2 = out.s2_used;
         design = "s1 = " + num(out.s1_used) + ", s2 = " + num(s2) + ", G0 = " + num(values.at(param::G0)) +
                  ", G1 = " + num(values.at(param::G1)) + ", Ginf = " + num(values.at(param::Ginf));
         plot.title = "geofilter " + spec.cli_name + ", eq. 15: " + design;
@@ -90,7 +90,9 @@ TransferPlot make_plot(const FilterSpec& spec, const ParameterValues& values, co
     std::vector<std::string> names;
     for (const auto& prefix : {param::zero_prefix, param::pole_prefix})
         for (int i = 1; i <= param::max_pole_zero; ++i) names.push_back(prefix + std::to_string(i));
-    const double scale = out.feature && values.at(names[size_t(corner)]) > 0 ? out.s1_used / values.at(names[size_t(corner)]) : 1.0;
+    // The radius or the selection set the chosen corner, the others keeping their ratios.
+    const double typed = values.at(names[size_t(corner)]);
+    const double scale = out.s1_used > 0 && typed > 0 ? out.s1_used / typed : 1.0;
     std::string zeros, poles;
     for (size_t i = 0; i < names.size(); ++i) {
         const double c = values.at(names[i]) * scale;
@@ -118,16 +120,15 @@ int run(const CliOptions& o, const CommandLineTool& tool) {
     std::vector<std::string> log;  // printed only once everything worked: a refusal is one line
     ParameterValues values = o.values;
     Feature feature;
-    if (o.radius) {
-        apply_feature_radius(spec, values, *o.radius, "--radius", log);
-        feature = {true, *o.radius};
-    }
     // Denoise designs from the selected bump or from the mesh: nothing to check before both are read.
     if (!measure && spec.kind != FilterKind::Denoise) {
         // Refuses a bad design before a large mesh is read. Scaling the frequencies (by the
-        // selection) keeps a design valid or invalid, so this holds for the selection too.
+        // selection, or the radius's default on the mesh) keeps a design valid or invalid, so a
+        // unit radius stands in for a default not known yet.
+        ParameterValues check = values;
+        complete_lengths(spec, check, 1.0);
         std::vector<std::string> unused;
-        design_from_values(spec, values, nullptr, unused);
+        design_from_values(spec, check, nullptr, unused);
     }
     PendingOutputs outputs;
     const std::string mesh_temporary = o.output.empty() ? "" : outputs.reserve(o.output);
@@ -141,7 +142,7 @@ int run(const CliOptions& o, const CommandLineTool& tool) {
     std::vector<int> selected;
     if (filtered_elsewhere) {
         out = std::move(*filtered_elsewhere);
-        if (out.feature) feature = {true, out.feature->radius};
+        if (out.radius_used > 0) feature = {true, out.radius_used};
     } else {
         mesh.emplace(MeshFile::read(o.input));
         log.push_back("read " + o.input + ": " + std::to_string(mesh->points().rows()) + " vertices, " +
@@ -175,7 +176,7 @@ int run(const CliOptions& o, const CommandLineTool& tool) {
                                               nullptr, tool.external_solver, tool.complex_factorization});
         bar.clear();
         if (interrupted) throw Error("interrupted");
-        if (out.feature) feature = {true, out.feature->radius};
+        if (out.radius_used > 0) feature = {true, out.radius_used};
 
         std::ostringstream summary;
         if (measure) {

@@ -23,13 +23,6 @@ double poly(const std::vector<double>& c, double s) {
 
 } // namespace
 
-std::string format_number(double value, int significant_digits) {
-    std::ostringstream os;
-    os.precision(significant_digits);
-    os << value;
-    return os.str();
-}
-
 std::vector<std::complex<double>> quadratic_roots(double c0, double c1, double c2) {
     if (c2 == 0) {
         if (c1 == 0) return {};

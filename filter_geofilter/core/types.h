@@ -31,4 +31,8 @@ public:
 // A number as messages and logs show it: 6 significant digits unless asked for more.
 std::string format_number(double value, int significant_digits = 6);
 
+// The length of the bounding box's diagonal: the mesh's size, which relative lengths and
+// tolerances are fractions of (0 for no points).
+double bounding_box_diagonal(const Points& points);
+
 } // namespace geofilter

@@ -67,7 +67,7 @@ MeshFilterInterface::FILTER_ARITY FilterGeoFilterPlugin::filterArity(QAction *) 
 
 void FilterGeoFilterPlugin::initParameterSet(QAction *a, MeshDocument &md, RichParameterList &par)
 {
-	bridge::addParameters(spec(a), md.mm() != nullptr && bridge::hasSelectedFaces(md.mm()->cm), par);
+	bridge::addParameters(spec(a), md.mm() != nullptr ? &md.mm()->cm : nullptr, par);
 }
 
 bool FilterGeoFilterPlugin::fail(const std::string &message)

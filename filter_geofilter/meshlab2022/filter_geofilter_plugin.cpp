@@ -95,7 +95,7 @@ FilterPlugin::FilterArity FilterGeoFilterPlugin::filterArity(const QAction *) co
 RichParameterList FilterGeoFilterPlugin::initParameterList(const QAction *a, const MeshDocument &md)
 {
 	RichParameterList par;
-	bridge::addParameters(spec(a), md.mm() != nullptr && bridge::hasSelectedFaces(md.mm()->cm), par);
+	bridge::addParameters(spec(a), md.mm() != nullptr ? &md.mm()->cm : nullptr, par);
 	return par;
 }
 

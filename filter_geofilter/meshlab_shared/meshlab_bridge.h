@@ -36,16 +36,30 @@ inline bool hasSelectedFaces(const CMeshO &cm)
 	return false;
 }
 
+// The mesh's size as the core measures it (the live vertices' bounding box), so that a
+// percentage in the dialog and a default radius mean what they mean in the other front ends.
+inline double diagonalOf(const CMeshO &cm)
+{
+	vcg::Box3<double> box;
+	for (const auto &v : cm.vert)
+		if (!v.IsD()) box.Add(vcg::Point3d(v.cP()[0], v.cP()[1], v.cP()[2]));
+	return box.IsNull() ? 0.0 : box.Diag();
+}
+
 // The dialog, a script and pymeshlab all build their parameters from this list, so the
-// table's names, labels, help and defaults reach every front end unchanged.
-inline void addParameters(const FilterSpec &spec, bool hasSelection, RichParameterList &par)
+// table's names, labels, help and defaults reach every front end unchanged. `cm` is the
+// current mesh (null: none), whose selection and size set the defaults.
+inline void addParameters(const FilterSpec &spec, const CMeshO *cm, RichParameterList &par)
 {
 	// A selection on the mesh almost always means "this is the feature": default to using it.
-	const ParameterValues defaults = default_values(spec, hasSelection);
+	const double diagonal = cm ? diagonalOf(*cm) : 0.0;
+	const ParameterValues defaults = default_values(spec, cm != nullptr && hasSelectedFaces(*cm), diagonal);
 	for (const ParameterSpec &p : spec.parameters) {
 		const QString name = qs(p.name), label = qs(p.label), help = qs(p.help);
 		const double d = defaults.at(p.name);
 		switch (p.type) {
+		// MeshLab's convention for a length: absolute, or a percentage of the diagonal (0 to 100 %).
+		case ParameterType::Length: par.addParam(RichAbsPerc(name, d, 0, diagonal > 0 ? diagonal : 1, label, help)); break;
 		case ParameterType::Float: par.addParam(RichFloat(name, d, label, help)); break;
 		case ParameterType::Bool: par.addParam(RichBool(name, d != 0, label, help)); break;
 		case ParameterType::Int: par.addParam(RichInt(name, int(std::lround(d)), label, help)); break;
@@ -75,6 +89,10 @@ inline ParameterValues readValues(const FilterSpec &spec, const RichParameterLis
 			if (v.isFloat()) values[p.name] = v.getFloat();
 			else if (v.isInt()) values[p.name] = v.getInt();
 			else expected = "RichFloat";
+			break;
+		case ParameterType::Length:   // RichAbsPerc holds the absolute length
+			if (v.isFloat()) values[p.name] = v.getFloat();
+			else expected = "RichAbsPerc";
 			break;
 		case ParameterType::Bool:
 			if (v.isBool()) values[p.name] = v.getBool() ? 1 : 0;

@@ -565,8 +565,23 @@ std::optional<RunOutput> filter_file_collectively(MPI_Comm comm, const FileJob* 
         const std::vector<int> selected = select_local_faces(comm, job, m, selection_log);
         feature = measure_distributed_feature(comm, m, selected);
     }
+    // Lengths left to their default are fractions of the whole mesh's diagonal, as in geofilter.
+    ParameterValues values = job.values;
+    {
+        double low[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, high[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+        for (Eigen::Index i = 0; i < Eigen::Index(m.owned); ++i)
+            for (int k = 0; k < 3; ++k) {
+                low[k] = std::min(low[k], m.points(i, k));
+                high[k] = std::max(high[k], m.points(i, k));
+            }
+        MPI_Allreduce(MPI_IN_PLACE, low, 3, MPI_DOUBLE, MPI_MIN, comm);
+        MPI_Allreduce(MPI_IN_PLACE, high, 3, MPI_DOUBLE, MPI_MAX, comm);
+        const double diagonal = std::sqrt((high[0] - low[0]) * (high[0] - low[0]) + (high[1] - low[1]) * (high[1] - low[1]) +
+                                          (high[2] - low[2]) * (high[2] - low[2]));
+        complete_lengths(spec, values, std::isfinite(diagonal) ? diagonal : 0.0);
+    }
     // Every rank designs the same G from the same values and the same reduced measurement.
-    RunOutput out = design_run(spec, job.values, feature);
+    RunOutput out = design_run(spec, values, feature);
     out.log.insert(out.log.begin(), selection_log.begin(), selection_log.end());
     FilterOptions options = filter_options(spec, job.values);
     detail::check_filter_options(out.transfer, options);

@@ -97,7 +97,8 @@ class ErrorTest(unittest.TestCase):
             (["lowpass", "--z1", "1"], "does not apply to the lowpass preset"),
             (["lowpass", "--solver", "magic"], "factored, pcg"),
             (["lowpass", "--s1", "1", "--s1", "2"], "given twice"),
-            (["lowpass", "--radius", "-1"], "--radius must be > 0"),
+            (["lowpass", "--radius", "-1"], "--radius must be a length >= 0"),
+            (["lowpass", "--radius", "0.1", "--s1", "25"], "--radius and --s1 both give the feature's frequency"),
             (["lowpass", "--radius", "1", "--select-stored"], "use one of them"),
             (["lowpass", "--select-sphere", "1,2,3"], "cx,cy,cz,r"),
             (["polezero", "--zeros", "1,2,3,4,5"], "1 to 4 numbers"),
@@ -126,7 +127,7 @@ class ErrorTest(unittest.TestCase):
         for preset in ("lowpass", "butterworth", "denoise"):
             self.assert_refused(preset, bad, self.output, status=1, mentions="vertex 7 has a NaN or infinite coordinate")
         # Cannot converge in 2 iterations: the solver refuses, nothing is written.
-        self.assert_refused("lowpass", "--solver", "pcg", "--max-iterations", 2, self.input, self.output, status=1)
+        self.assert_refused("lowpass", "--s1", 25, "--solver", "pcg", "--max-iterations", 2, self.input, self.output, status=1)
 
 
 if __name__ == "__main__":

@@ -111,7 +111,7 @@ class FormatTest(unittest.TestCase):
         p = h.run("lowpass", source, os.path.join(self.dir, "ignored.off"))
         self.assertEqual(p.returncode, 0, h.describe(p))
         self.assertIn("--select-stored would take the feature from it", p.stderr)
-        self.assertIn("s1 = 25, s2 = 50 as given", p.stderr)
+        self.assertIn("from the feature radius", p.stderr)
 
 
 if __name__ == "__main__":

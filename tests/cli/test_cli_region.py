@@ -42,7 +42,7 @@ class Region(unittest.TestCase):
         far = self.v[:, 2] < 0.5
         np.testing.assert_array_equal(v[far], self.v[far])
         self.assertIn("left exactly as they were", p.stderr)
-        self.assertIn("useSelection off", p.stderr, "--s1 with --region selected: the frequency is typed")
+        self.assertIn("s1 as typed", p.stderr, "--s1 with --region selected: the frequency is typed")
 
     def test_selection_gives_frequency_and_region(self):
         p = h.run("exaggerate", "--region", "selected", "--select-sphere", "0,0,1,0.5", self.source, self.out("same.ply"))

@@ -50,12 +50,12 @@ class SphereTest(unittest.TestCase):
                 expected = abs(h.eq15_gain(2 / radius ** 2, **FIG6))
                 self.assertAlmostEqual(ratio / expected, 1, delta=0.02, msg=f"r = {radius}: {ratio} vs G = {expected}")
 
-    def test_radius_sets_s1_and_keeps_s2_ratio(self):
+    def test_radius_sets_s1_and_the_presets_s2_ratio(self):
         source = self.sphere_file(1.0, 3)
         for shape, k in [("sphere", 2.0), ("cylinder", 1.0)]:
             for R in (0.05, 0.4):
                 with self.subTest(shape=shape, R=R):
-                    p = h.run("exaggerate", "--radius", R, "--feature-shape", shape, "--s1", 25, "--s2", 60, source,
+                    p = h.run("exaggerate", "--radius", R, "--feature-shape", shape, source,
                               os.path.join(self.dir, "radius.off"))
                     self.assertEqual(p.returncode, 0, h.describe(p))
                     s1 = h.log_value(p, DESIGN_S1)
@@ -69,7 +69,7 @@ class SphereTest(unittest.TestCase):
                   self.sphere_file(1.0, 3), os.path.join(self.dir, "pz-radius.off"))
         self.assertEqual(p.returncode, 0, h.describe(p))
         s = 2 / R ** 2  # 50: z2 = 50, so every corner is scaled by 50/400
-        self.assertAlmostEqual(h.log_value(p, r"corner z2 = ([-+.\deE]+) from --radius"), s, places=4)
+        self.assertAlmostEqual(h.log_value(p, r"corner z2 = ([-+.\deE]+) from the feature radius"), s, places=4)
         self.assertIn("zeros 12.5, 50, poles 6.25, 100", p.stdout)
 
     def test_selected_whole_sphere_gives_2_over_r2(self):

@@ -90,6 +90,7 @@ void run_core_on_bytes(const uint8_t* data, size_t size) {
         if (in.byte() % 3 != 0) continue;  // keep most defaults: they reach deeper
         switch (p.type) {
         case ParameterType::Float: values[p.name] = in.number(p.default_value != 0 ? p.default_value : 1.0); break;
+        case ParameterType::Length: values[p.name] = in.number(p.default_value != 0 ? p.default_value : 0.05); break;
         case ParameterType::Bool: values[p.name] = in.byte() % 2; break;
         case ParameterType::Int: values[p.name] = in.integer(-5, 400); break;
         case ParameterType::Enum: values[p.name] = in.integer(-1, int(p.choices.size())); break;

@@ -32,7 +32,7 @@ PLUGIN_RELDIR = os.path.join("lib", "x86_64-linux-gnu", "meshlab", "plugins")
 @dataclass(frozen=True)
 class Param:
     name: str
-    rich_type: str  # RichFloat, RichBool, RichInt, RichEnum
+    rich_type: str  # RichFloat, RichBool, RichInt, RichEnum, RichAbsPerc
     default: object
     choices: int = 0  # RichEnum only: number of choices (enum_cardinality)
 
@@ -47,11 +47,16 @@ def _param(spec):
         default = bool(default)
     elif kind in ("Int", "Enum"):
         default = int(default)
+    elif kind == "Length":
+        # The table gives a fraction of the diagonal; the plugin turns it into a length on the
+        # current mesh. A script can only give lengths, so a nonzero default is left out and
+        # meshlabserver takes it from the plugin (see geofilter()).
+        return Param(spec["name"], "RichAbsPerc", None if default else 0.0)
     return Param(spec["name"], "Rich" + kind, default, len(spec["choices"]) if kind == "Enum" else 0)
 
 
 FILTERS = {f["name"]: [_param(p) for p in f["parameters"]] for f in filter_table.TABLE}
-SECOND_ORDER = [n for n in FILTERS if FILTERS[n] and FILTERS[n][0].name == "s1"]
+SECOND_ORDER = [f["name"] for f in filter_table.TABLE if f["kind"] == "SecondOrder"]
 
 
 # ---------------------------------------------------------------------------------------------
@@ -64,13 +69,17 @@ class Step:
 
 
 def geofilter(name, **values):
-    """A GeoFilter step with every parameter: the table's value unless given."""
+    """A GeoFilter step with every parameter: the table's value unless given. A length whose
+    default depends on the mesh (the feature radius, always the first parameter) is left out
+    unless given: meshlabserver 2020.09 fills in one missing parameter, the first, with the
+    plugin's default on the current mesh, as it does for a script from an older version."""
     spec = FILTERS[name]
     known = {p.name for p in spec}
     unknown = set(values) - known
     if unknown:  # a typo here would otherwise surface as a meshlabserver abort
         raise KeyError(f"{name} has no parameter(s) {sorted(unknown)}")
-    return Step(name, [(p, values.get(p.name, p.default)) for p in spec])
+    return Step(name, [(p, values.get(p.name, p.default)) for p in spec
+                       if p.name in values or p.default is not None])
 
 
 def sphere(radius, subdiv):
@@ -97,7 +106,7 @@ def _value_text(p, v):
         return "true" if v else "false"
     if p.rich_type in ("RichInt", "RichEnum"):
         return str(int(v))
-    if p.rich_type == "RichFloat":
+    if p.rich_type in ("RichFloat", "RichAbsPerc"):
         return repr(float(v))
     return str(v)
 
@@ -108,6 +117,9 @@ def write_script(path, steps):
         f = ET.SubElement(root, "filter", name=s.filter)
         for p, v in s.params:
             e = ET.SubElement(f, "Param", name=p.name, type=p.rich_type, value=_value_text(p, v))
+            if p.rich_type == "RichAbsPerc":  # the range only scales the dialog's percentage
+                e.set("min", "0")
+                e.set("max", repr(max(1.0, 10 * float(v))))
             if p.rich_type == "RichEnum":
                 e.set("enum_cardinality", str(p.choices))
                 for i in range(p.choices):

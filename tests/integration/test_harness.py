@@ -10,7 +10,7 @@ import unittest
 import geofilter_harness as h
 
 # Value::typeName() in MeshLab 2020.09, as printed by `meshlabserver -d`.
-TYPE_NAMES = {"RichFloat": "Float", "RichBool": "Bool", "RichInt": "Int", "RichEnum": "Enum"}
+TYPE_NAMES = {"RichFloat": "Float", "RichBool": "Bool", "RichInt": "Int", "RichEnum": "Enum", "RichAbsPerc": "AbsPerc"}
 
 
 class HarnessMatchesPlugin(unittest.TestCase):

@@ -49,7 +49,16 @@ def test_radius_sets_s1_and_keeps_the_ratio():
     v, f = noisy_sphere()
     _, report = geofilter.lowpass(v, f, radius=0.25)
     assert report["s1"] == pytest.approx(2 / 0.25 ** 2)
-    assert any("from radius=" in line for line in report["log"])
+    assert any("from the feature radius r = 0.25" in line for line in report["log"])
+    # Left out, the radius is this filter's fraction of the diagonal: the same mesh twice as
+    # large gets half the frequency squared.
+    _, small = geofilter.lowpass(v, f)
+    _, large = geofilter.lowpass(2 * v, f)
+    diagonal = np.linalg.norm(v.max(axis=0) - v.min(axis=0))
+    assert small["s1"] == pytest.approx(2 / (0.04 * diagonal) ** 2)
+    assert large["s1"] == pytest.approx(small["s1"] / 4)
+    with pytest.raises(ValueError, match="radius and selected_faces"):
+        geofilter.lowpass(v, f, radius=0.25, selected_faces=np.arange(len(f)))
 
 
 def test_selection_mask_or_indices_measure_the_feature():
@@ -64,7 +73,7 @@ def test_selection_mask_or_indices_measure_the_feature():
 
 
 def test_design_is_the_filter_table_design():
-    g = geofilter.design("exaggerate")  # 25, 60, 1, 3, 0.9
+    g = geofilter.design("exaggerate", radius=np.sqrt(2 / 25))  # s1 = 25, s2 = 2.4 s1 = 60, 1, 3, 0.9
     assert g(0.0) == pytest.approx(1)
     assert g(25.0) == pytest.approx(3)
     assert g(60.0) == pytest.approx(1)
@@ -92,7 +101,7 @@ def test_bad_input_raises_the_core_message_and_leaves_the_arrays_alone():
         geofilter.lowpass(v, wrong)
     with pytest.raises(ValueError, match="does not exist"):
         geofilter.lowpass(v, -np.abs(f) - 1)
-    with pytest.raises(geofilter.Error, match="s1 must be > 0"):
+    with pytest.raises(geofilter.Error, match="s1 and s2 must be finite frequencies >= 0"):
         geofilter.lowpass(v, f, s1=-1)
     with pytest.raises(TypeError, match="unknown parameter 'sigma'"):
         geofilter.lowpass(v, f, sigma=2)

@@ -27,8 +27,7 @@ std::vector<SecondOrderSpec> preset_specs() {
     std::vector<SecondOrderSpec> out;
     for (const auto& f : filter_table()) {
         if (f.kind != FilterKind::SecondOrder) continue;
-        out.push_back({f.parameter("s1")->default_value, f.parameter("s2")->default_value, f.parameter("G0")->default_value,
-                       f.parameter("G1")->default_value, f.parameter("Ginf")->default_value});
+        out.push_back(f.reference);
     }
     // Paper sets whose frequencies matter on a mesh of unit size, sharp and wide ones.
     out.push_back({10, 25, 1, 30, 0});

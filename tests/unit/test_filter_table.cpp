@@ -15,6 +15,14 @@ using namespace geofilter;
 
 namespace {
 double reference_mean_radius(const Points& p) { return p.rowwise().norm().mean(); }
+
+// A second-order preset's values with its reference frequencies typed.
+ParameterValues reference_values(const FilterSpec& f) {
+    ParameterValues v = default_values(f, false);
+    v[param::s1] = f.reference.s1;
+    v[param::s2] = f.reference.s2;
+    return v;
+}
 } // namespace
 
 TEST(FilterTable, NamesAreTheOnesScriptsDependOn) {
@@ -43,16 +51,18 @@ TEST(FilterTable, EverySecondOrderPresetIsStableAndHasTheFiveParameters) {
         SCOPED_TRACE(f.name);
         for (const char* p : {"s1", "s2", "G0", "G1", "Ginf", "useSelection", "featureShape", "solver"})
             ASSERT_NE(f.parameter(p), nullptr) << p;
-        const SecondOrderSpec s{f.parameter("s1")->default_value, f.parameter("s2")->default_value,
-                                f.parameter("G0")->default_value, f.parameter("G1")->default_value,
-                                f.parameter("Ginf")->default_value};
+        // The gains are the dialog's defaults; the reference frequencies are the paper's.
+        EXPECT_EQ(f.parameter("G0")->default_value, f.reference.G0);
+        EXPECT_EQ(f.parameter("G1")->default_value, f.reference.G1);
+        EXPECT_EQ(f.parameter("Ginf")->default_value, f.reference.Ginf);
+        const SecondOrderSpec s = f.reference;
         const TransferFunction g = design_second_order(s);
         for (const auto& pole : g.poles) EXPECT_TRUE(pole.imag() != 0 || pole.real() < 0);
     }
     auto gain = [](const char* name, double s) {
         const FilterSpec& f = *find_filter(name);
         std::vector<std::string> log;
-        return design_from_values(f, default_values(f, false), nullptr, log, nullptr)(s);
+        return design_from_values(f, reference_values(f), nullptr, log, nullptr)(s);
     };
     EXPECT_LT(gain("lowpass", 1e4), 0.01);
     EXPECT_NEAR(gain("lowpass", 0), 1, 1e-12);
@@ -70,7 +80,7 @@ TEST(FilterTable, HighpassPolesAreRealTheOtherPresetsHaveAComplexPair) {
         if (f.kind != FilterKind::SecondOrder) continue;
         SCOPED_TRACE(f.name);
         std::vector<std::string> log;
-        const TransferFunction g = design_from_values(f, default_values(f, false), nullptr, log, nullptr);
+        const TransferFunction g = design_from_values(f, reference_values(f), nullptr, log, nullptr);
         ASSERT_EQ(g.poles.size(), 2u);
         if (f.name == "GeoFilter: Highpass") {
             for (const auto& pole : g.poles) EXPECT_EQ(pole.imag(), 0);
@@ -173,4 +183,75 @@ TEST(FilterTable, DenoiseRunLogsOperatorOrderAndCutoff) {
     EXPECT_TRUE(logged(out.log, "<- chosen"));
     // A clean sphere is all low frequency: whichever lowpass is chosen, its radius barely changes.
     EXPECT_NEAR(reference_mean_radius(out.points), 1.0, 2e-3);
+}
+
+// The dialog speaks in sizes: every filter a user sets by size opens on the feature radius,
+// a length (MeshLab's RichAbsPerc) whose default is a fraction of the diagonal.
+TEST(FilterTable, SizedFiltersOpenOnTheFeatureRadiusAndLengthsAreLengths) {
+    for (const auto& f : filter_table()) {
+        SCOPED_TRACE(f.name);
+        if (const ParameterSpec* b = f.parameter(param::blend_width)) EXPECT_EQ(b->type, ParameterType::Length);
+        if (f.kind == FilterKind::Measure || f.kind == FilterKind::Denoise) {
+            EXPECT_EQ(f.parameter(param::radius), nullptr);
+            continue;
+        }
+        ASSERT_FALSE(f.parameters.empty());
+        EXPECT_EQ(f.parameters.front().name, param::radius) << "meshlabserver fills in only the first parameter a script omits";
+        EXPECT_EQ(f.parameters.front().type, ParameterType::Length);
+        const double fraction = f.parameters.front().default_value;
+        if (f.kind == FilterKind::PoleZero) EXPECT_EQ(fraction, 0) << "0 = the corners as typed";
+        else EXPECT_TRUE(fraction > 0.005 && fraction < 0.2) << fraction;
+    }
+}
+
+// A preset left at its defaults designs s1 = 2/r^2 from r = fraction x diagonal, so the same
+// mesh scaled by 1000 is filtered into the same shape scaled by 1000.
+TEST(FilterTable, TheDefaultRadiusScalesWithTheMesh) {
+    const Mesh m = icosphere(3, 1.0);
+    Points bumpy = m.points;
+    for (Eigen::Index i = 0; i < bumpy.rows(); ++i) bumpy.row(i) *= 1 + 0.05 * std::sin(7 * bumpy(i, 0)) * std::cos(5 * bumpy(i, 1));
+    const std::vector<int> none;
+    for (const char* name : {"lowpass", "notch", "exaggerate", "butterworth"}) {
+        SCOPED_TRACE(name);
+        const FilterSpec& f = *find_filter(name);
+        const RunOutput small = run_filter(f, default_values(f, false), {bumpy, m.triangles, none, {}});
+        const Points big_input = 1000 * bumpy;
+        const RunOutput big = run_filter(f, default_values(f, false), {big_input, m.triangles, none, {}});
+        const double r = f.parameter(param::radius)->default_value * bounding_box_diagonal(bumpy);
+        EXPECT_NEAR(small.s1_used, 2 / (r * r), 1e-9 * small.s1_used);
+        EXPECT_NEAR(big.s1_used * 1e6, small.s1_used, 1e-9 * small.s1_used);
+        EXPECT_EQ(small.radius_used, r);
+        const double size = bounding_box_diagonal(big_input);
+        EXPECT_LT((big.points - 1000 * small.points).cwiseAbs().maxCoeff(), 1e-6 * size);
+        EXPECT_GT((small.points - bumpy).cwiseAbs().maxCoeff(), 1e-3) << "the default filter does something";
+    }
+}
+
+// The radius is the paper's frequency in other words: a radius r gives the design typed as
+// s1 = 2/r^2 (1/r^2 cylinder-like) with the preset's ratio s2/s1.
+TEST(FilterTable, ARadiusGivesTheDesignOfItsFrequency) {
+    for (const auto& f : filter_table()) {
+        if (f.kind != FilterKind::SecondOrder) continue;
+        SCOPED_TRACE(f.name);
+        for (const double shape : {0.0, 1.0}) {
+            ParameterValues sized = default_values(f, false);
+            sized[param::radius] = 0.3;
+            sized[param::feature_shape] = shape;
+            ParameterValues typed = sized;
+            typed[param::s1] = (shape == 0 ? 2 : 1) / (0.3 * 0.3);
+            typed[param::s2] = typed[param::s1] * f.reference.s2 / f.reference.s1;
+            std::vector<std::string> log;
+            const TransferFunction a = design_from_values(f, sized, nullptr, log), b = design_from_values(f, typed, nullptr, log);
+            for (const double s : {0.5, 5.0, 22.2, 50.0, 500.0}) EXPECT_NEAR(a(s), b(s), 1e-12 * (1 + std::abs(b(s))));
+        }
+    }
+    const FilterSpec& f = *find_filter("lowpass");
+    ParameterValues v = default_values(f, false, 1.0);
+    v[param::s2] = 50;
+    std::vector<std::string> log;
+    EXPECT_THROW(design_from_values(f, v, nullptr, log), Error) << "s2 typed without s1 is refused";
+    v = default_values(f, false);
+    EXPECT_THROW(design_from_values(f, v, nullptr, log), Error) << "no radius and no mesh: nothing to design from";
+    v[param::radius] = -1;
+    EXPECT_THROW(design_from_values(f, v, nullptr, log), Error);
 }
