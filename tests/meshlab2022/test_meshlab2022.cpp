@@ -11,6 +11,7 @@
 // GEOFILTER_TEST_WORKDIR/cases.json, which test_compare_2020.py replays with the 2020.09
 // plugin through meshlabserver.
 
+#include "core/filter.h"
 #include "core/region.h"
 #include "shapes.h"
 #include "filter_table.h"
@@ -136,6 +137,19 @@ bool collectProgress(const int pos, const char *str)
 
 using Values = std::map<std::string, QVariant>;
 
+// pymeshlab.PercentageValue(x) for a length is written "x%" here: x % of the RichAbsPerc's
+// range, as pymeshlab turns a percentage into the absolute value the filter reads.
+QVariant percentage(double x) { return QVariant(QString::number(x, 'g', 17) + "%"); }
+
+// The mesh's size as the plugin measures it: the live vertices' bounding box.
+double diagonalOf(const CMeshO &cm)
+{
+	vcg::Box3<double> box;
+	for (const auto &v : cm.vert)
+		if (!v.IsD()) box.Add(vcg::Point3d(v.cP()[0], v.cP()[1], v.cP()[2]));
+	return box.Diag();
+}
+
 // A value set by the parameter's type. An enum takes an index, or, as pymeshlab's keyword
 // arguments allow, one of its labels.
 void setValue(RichParameter &p, const QVariant &v, const std::string &name)
@@ -146,6 +160,11 @@ void setValue(RichParameter &p, const QVariant &v, const std::string &name)
 		if (i < 0 || i >= labels.size())
 			throw std::runtime_error(name + ": '" + v.toString().toStdString() + "' is none of the enum's values");
 		p.setValue(IntValue(i));
+	}
+	else if (p.isOfType<RichAbsPerc>() && v.type() == QVariant::String && v.toString().endsWith('%')) {
+		const auto &range = dynamic_cast<const RichAbsPerc &>(p);
+		const double x = v.toString().chopped(1).toDouble();
+		p.setValue(FloatValue(Scalarm(range.min + (range.max - range.min) * x / 100)));
 	}
 	else if (p.value().isBool()) p.setValue(BoolValue(v.toBool()));
 	else if (p.value().isInt()) p.setValue(IntValue(v.toInt()));
@@ -389,6 +408,17 @@ TEST(Parameters, MatchTheTableAndUseSelectionFollowsTheSelection)
 				ASSERT_TRUE(rpl.hasParameter(qs(p.name))) << p.name;
 				const Value &v = rpl.getParameterByName(qs(p.name)).value();
 				switch (p.type) {
+				case geofilter::ParameterType::Length: {
+					// MeshLab's convention for lengths: absolute or % of the diagonal.
+					const RichParameter &rp = rpl.getParameterByName(qs(p.name));
+					ASSERT_TRUE(rp.isOfType<RichAbsPerc>()) << p.name;
+					const auto &range = dynamic_cast<const RichAbsPerc &>(rp);
+					const double diagonal = diagonalOf(m.cm);
+					EXPECT_EQ(range.min, 0) << p.name;
+					EXPECT_NEAR(range.max, diagonal, 1e-6 * diagonal) << p.name;
+					EXPECT_NEAR(v.getFloat(), p.default_value * diagonal, 1e-6 * diagonal) << p.name;
+					break;
+				}
 				case geofilter::ParameterType::Float:
 					ASSERT_TRUE(v.isFloat()) << p.name;
 					// FloatValue's constructor takes a float, even in a double-precision MeshLab
@@ -675,6 +705,38 @@ TEST(Region, SelectedCapChangesOnlyTheCapAndItsBand)
 	EXPECT_TRUE(logged);
 }
 
+// The dialog in sizes: a radius given as a length, or as pymeshlab's percentage of the
+// diagonal, filters as the paper's design typed with s1 = 2/r^2 (and the preset's s2 = 2 s1),
+// which is what geofilter --radius r runs; within the float write-back, 1e-6 of the diagonal.
+TEST(Sizes, ARadiusAsALengthOrAPercentageIsTheDesignOfItsFrequency)
+{
+	for (const bool percentage : {false, true}) {
+		SCOPED_TRACE(percentage ? "percentage" : "length");
+		MeshDocument md;
+		MeshModel &m = createSphere(md, 1.0, 3);
+		for (auto &v : m.cm.vert) {
+			const double x = v.P()[0], y = v.P()[1];
+			v.P() *= Scalarm(1 + 0.05 * std::sin(7 * x) * std::cos(5 * y));
+		}
+		m.updateBoxAndNormals();
+		const geofilter::Mesh before = coreCopy(m.cm);
+		const double diagonal = diagonalOf(m.cm), r = 0.15;
+		Kwargs kwargs{{"useselection", false}, {"tolerance", 1e-10}};
+		kwargs["radius"] = percentage ? percentage(100 * r / diagonal) : QVariant(r);
+		const FilterRun run = applyPython(md, "apply_geofilter_lowpass", kwargs);
+		const geofilter::Mesh after = coreCopy(m.cm);
+		geofilter::FilterOptions options;
+		options.tolerance = 1e-10;
+		const geofilter::Points expected = geofilter::apply_filter(
+		    before.points, before.triangles, geofilter::design_second_order({2 / (r * r), 4 / (r * r), 1, 1.1, 0}), options);
+		EXPECT_LT((after.points - expected).cwiseAbs().maxCoeff(), 1e-6 * diagonal);
+		EXPECT_GT((after.points - before.points).cwiseAbs().maxCoeff(), 1e-3 * diagonal) << "the filter changed the mesh";
+		bool logged = false;
+		for (const auto &l : run.log) logged = logged || l.find("from the feature radius r = 0.15") != std::string::npos;
+		EXPECT_TRUE(logged);
+	}
+}
+
 TEST(Region, QualityWeightOneIsTheWholeMeshFilterAndZeroChangesNothing)
 {
 	MeshDocument whole, one, zero;
@@ -808,11 +870,14 @@ TEST(Comparison, WriteCasesFor2020)
 		}
 
 		Values values;   // every parameter, so that the 2020.09 script states the same ones
-		for (const auto &p : tableEntry(c.filter).parameters) values[p.name] = p.default_value;
+		for (const auto &p : tableEntry(c.filter).parameters)   // a length's default: as the dialog's, on this mesh
+			values[p.name] = p.type == geofilter::ParameterType::Length ? double(float(p.default_value * diagonalOf(m.cm)))
+			                                                           : p.default_value;
 		for (const auto &[k, v] : c.values) values[k] = v;
 		for (const auto &p : tableEntry(c.filter).parameters)
 			if (p.type == geofilter::ParameterType::Bool) values[p.name] = values[p.name].toDouble() != 0;
-			else if (p.type != geofilter::ParameterType::Float) values[p.name] = int(values[p.name].toDouble());
+			else if (p.type != geofilter::ParameterType::Float && p.type != geofilter::ParameterType::Length)
+				values[p.name] = int(values[p.name].toDouble());
 
 		// As a pymeshlab user calls it: ms.apply_filter('apply_geofilter_...', s1=..., useselection=...),
 		// enums by label (pymeshlab's documented form); the 2020.09 script gets the MeshLab names.
@@ -828,7 +893,7 @@ TEST(Comparison, WriteCasesFor2020)
 		// In the table's order, with MeshLab's type names: what a 2020.09 script must state.
 		QJsonArray params;
 		for (const auto &p : tableEntry(c.filter).parameters) {
-			static const char *const rich[] = {"RichFloat", "RichBool", "RichInt", "RichEnum"};
+			static const char *const rich[] = {"RichFloat", "RichBool", "RichInt", "RichEnum", "RichAbsPerc"};
 			params.append(QJsonObject{{"name", qs(p.name)},
 			                          {"type", rich[int(p.type)]},
 			                          {"value", json(values.at(p.name))},
