@@ -272,7 +272,11 @@ void log_filter_report(RunOutput& out, const FilterOptions& options) {
 }
 
 RunOutput run_filter(const FilterSpec& spec, const ParameterValues& values, const RunInput& input) {
-    const bool use_selection = spec.kind == FilterKind::Measure || value_of(spec, values, param::use_selection) != 0;
+    const int region = spec.parameter(param::region) ? choice_of(spec, values, param::region) : 0;
+    // Denoise on a region designs on the mesh: the selection, if any, is the region, no feature.
+    const bool use_selection = spec.kind == FilterKind::Measure ||
+                               (value_of(spec, values, param::use_selection) != 0 &&
+                                !(spec.kind == FilterKind::Denoise && region != 0));
     std::optional<FeatureEllipsoid> feature;
     if (use_selection) {
         if (input.selected_faces.empty())
@@ -308,7 +312,6 @@ RunOutput run_filter(const FilterSpec& spec, const ParameterValues& values, cons
     options.external_solver = input.external_solver;
     options.complex_factorization = input.complex_factorization;
 
-    const int region = spec.parameter(param::region) ? choice_of(spec, values, param::region) : 0;
     // Denoise designs on the mesh (it tries its candidates there and keeps the best-scoring
     // one, already applied to the whole mesh) unless the selection is one bump to remove: with
     // nothing selected, on a region (the selection, if any, is the region), and when the
@@ -320,7 +323,6 @@ RunOutput run_filter(const FilterSpec& spec, const ParameterValues& values, cons
         if (region != 0) {
             sampling_why = region == 1 ? "the selection is the region to denoise, not a bump to remove"
                                        : "the vertex quality weighs where to denoise";
-            feature.reset();
         } else if (feature) {
             const double share = selected_area_share(input.points, input.triangles, input.selected_faces);
             if (share >= denoise_largest_bump_share) {
