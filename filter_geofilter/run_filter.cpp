@@ -430,9 +430,12 @@ RunOutput run_filter(const FilterSpec& spec, const ParameterValues& values, cons
                                     " high, " + num(100 * pattern.unexplained) + " % of it unexplained";
             const std::string refused =
                 pattern.side == 0 ? "the selected bump stands neither above nor below the surface around it"
-                                  : "the selected bump is not one of a pattern of bumps on a smoother surface (" + fit +
-                                        ", more than " + num(100 * bump_max_unexplained) +
-                                        " %): the surface's own detail at this size dominates";
+                : pattern.unexplained <= bump_max_unexplained
+                    ? "the selected bump is no bump (" + fit + ": lower than " + num(bump_min_height) +
+                          " of its radius)"
+                    : "the selected bump is not one of a pattern of bumps on a smoother surface (" + fit +
+                          ", more than " + num(100 * bump_max_unexplained) +
+                          " %): the surface's own detail at this size dominates";
             const std::string detail = "the lowpass removed detail of " + num(bump.removed_detail) +
                                        " RMS across the selection (the threshold: " + num(bump_min_height) +
                                        " of its radius, " + num(bump_min_height * out.feature->radius) + ")";
