@@ -6,6 +6,7 @@
 #include "core/icosphere.h"
 
 #include "core/denoise.h"
+#include "core/mesh_prep.h"
 #include "core/surface_measures.h"
 
 #include <algorithm>
@@ -309,7 +310,11 @@ void log_filter_report(RunOutput& out, const FilterOptions& options) {
 RunOutput run_filter(const FilterSpec& spec, const ParameterValues& given, const RunInput& input) {
     ParameterValues values = given;
     complete_lengths(spec, values, bounding_box_diagonal(input.points));
-    const bool use_selection = spec.kind == FilterKind::Measure || value_of(spec, values, param::use_selection) != 0;
+    const int region = spec.parameter(param::region) ? choice_of(spec, values, param::region) : 0;
+    // Denoise on a region designs on the mesh: the selection, if any, is the region, no feature.
+    const bool use_selection = spec.kind == FilterKind::Measure ||
+                               (value_of(spec, values, param::use_selection) != 0 &&
+                                !(spec.kind == FilterKind::Denoise && region != 0));
     std::optional<FeatureEllipsoid> feature;
     if (use_selection) {
         if (input.selected_faces.empty())
@@ -345,11 +350,42 @@ RunOutput run_filter(const FilterSpec& spec, const ParameterValues& given, const
     options.external_solver = input.external_solver;
     options.complex_factorization = input.complex_factorization;
 
-    // Denoise with nothing selected designs on the mesh: it tries its candidates there and
-    // keeps the best-scoring one, already applied to the whole mesh.
+    // Denoise designs on the mesh (it tries its candidates there and keeps the best-scoring
+    // one, already applied to the whole mesh) unless the selection is one bump to remove: with
+    // nothing selected, on a region (the selection, if any, is the region), and when the
+    // selection is too large to be one bump of a pattern.
     RunOutput out;
     std::optional<SamplingDenoise> sampled;
+    std::string sampling_why;
+    if (spec.kind == FilterKind::Denoise) {
+        if (region != 0) {
+            sampling_why = region == 1 ? "the selection is the region to denoise, not a bump to remove"
+                                       : "the vertex quality weighs where to denoise";
+        } else if (feature) {
+            const double share = selected_area_share(input.points, input.triangles, input.selected_faces);
+            if (share >= denoise_largest_bump_share) {
+                out.log.push_back("feature: " + describe_feature(*feature));
+                sampling_why = "the selection covers " + num(100 * share) + " % of the mesh's area, " +
+                               num(100 * denoise_largest_bump_share) +
+                               " % or more: that is no bump of a pattern (a lowpass cut at twice its radius would"
+                               " reshape the whole mesh), so per-vertex sampling noise is removed instead";
+                feature.reset();
+            }
+        }
+    }
+    // Denoise's region, before the denoising: a region it cannot use is refused at once.
+    std::optional<std::vector<double>> denoise_weight;
+    if (spec.kind == FilterKind::Denoise && region != 0) {
+        denoise_weight = region_weight_from_values(region, value_of(spec, values, param::blend_width), input, [&] {
+            const PreparedMesh usable = prepare_mesh(input.points, input.triangles);  // refuses bad indices first
+            const double h = mean_edge_length(usable.points, usable.triangles);
+            return std::make_pair(denoise_blend_edges * h, num(denoise_blend_edges) + " mean edge lengths of " + num(h) +
+                                                               " (Denoise has no feature radius)");
+        }, out.log);
+    }
     if (spec.kind == FilterKind::Denoise && !feature) {
+        out.log.push_back("Denoise: the sampling-noise rule (the lowpass chosen on the mesh by estimated risk)" +
+                          (sampling_why.empty() ? std::string(", nothing selected") : ": " + sampling_why));
         const int order = order_of(spec, values);
         sampled = denoise_sampling_noise(input.points, input.triangles, order,
                                          operator_from_values(spec, values, false), options);
@@ -366,7 +402,8 @@ RunOutput run_filter(const FilterSpec& spec, const ParameterValues& given, const
         out.log.push_back("noise along the normals: standard deviation " + num(sigma) + " = " +
                           num(sigma / mean_edge_length(input.points, input.triangles)) +
                           " mean edge lengths (from what the umbrella lowpass at frequency 1 removes along them)");
-        out.log.push_back("risk estimate (nothing selected): " + std::to_string(scored) + " of " +
+        out.log.push_back(std::string("risk estimate ") + (sampling_why.empty() ? "(nothing selected)" : "(on the whole mesh)") +
+                          ": " + std::to_string(scored) + " of " +
                           std::to_string(sampled->scores.size()) +
                           " lowpasses scored, each operator's cutoffs searched downhill from the middle one" +
                           (sampled->scoring_patches
@@ -391,8 +428,7 @@ RunOutput run_filter(const FilterSpec& spec, const ParameterValues& given, const
         out = design_run(spec, values, feature);
     }
     options.op = out.op;
-    const int region = spec.parameter(param::region) ? choice_of(spec, values, param::region) : 0;
-    if (region == 0 && sampled) {
+    if (sampled) {
         out.points = std::move(sampled->points);
         out.report = sampled->report;
         if (const auto& m = sampled->normal_motion)
@@ -410,37 +446,59 @@ RunOutput run_filter(const FilterSpec& spec, const ParameterValues& given, const
                               : "volume kept: " + std::to_string(v.closed_components) +
                                     " closed component(s) moved along their normals by at most " + num(v.largest_offset) +
                                     " (the lowpass had changed the volume by up to " + num(100 * v.largest_change) + " %)");
+        if (denoise_weight) {
+            // The region takes the denoised points by its weight, as the other filters' regions
+            // take their filtered points: outside it every vertex stays bit for bit.
+            const std::vector<double>& weight = *denoise_weight;
+            out.points = blend_by_weight(input.points, out.points, weight);
+            const auto touched = std::count_if(weight.begin(), weight.end(), [](double w) { return w > 0; });
+            out.log.push_back("region: " + std::to_string(touched) +
+                              " vertices with weight > 0 took that share of the denoised change; " +
+                              std::to_string(input.points.rows() - touched) + " vertices left exactly as they were");
+        }
     } else if (region == 0) {
         out.points = apply_filter(input.points, input.triangles, out.transfer, options, &out.report, input.cache);
         if (spec.kind == FilterKind::Denoise && out.feature) {
-            // What the lowpass kept of the bumps is computed by the same lowpass, on fields of
-            // unit height: 1e-5 of the diagonal is far below what decides the fit.
-            FilterOptions field_options = options;
-            field_options.tolerance = std::max(options.tolerance, 1e-5);
-            field_options.progress = nullptr;
-            BumpPatternReport pattern;
-            const Points pattern_removed =
-                remove_bump_pattern(input.points, out.points, input.triangles, input.selected_faces,
-                                    out.feature->radius, out.transfer, field_options, &pattern);
+            const SelectedBumpDenoise bump = denoise_selected_bump(input.points, out.points, input.triangles,
+                                                                   input.selected_faces, out.feature->radius,
+                                                                   out.transfer, options);
+            const BumpPatternReport& pattern = bump.pattern;
             const std::string fit = "Gaussian profile of width " + num(pattern.width) + " (the selection's radius " +
                                     num(out.feature->radius) + "), selected bump " + num(pattern.selected_height) +
                                     " high, " + num(100 * pattern.unexplained) + " % of it unexplained";
-            if (pattern.side == 0) {
-                out.log.push_back("the selected bump stands neither above nor below the surface around it: nothing was removed");
-                out.report.warnings.push_back("the selected bump stands neither above nor below its surroundings: nothing was removed");
-            } else if (!pattern.removed) {
-                const std::string why = "the selected bump is not one of a pattern of bumps on a smoother surface (" + fit +
-                                        ", more than " + num(100 * bump_max_unexplained) +
-                                        " %): the surface's own detail at this size dominates; the mesh was left as it was";
-                out.log.push_back("pattern of bumps: " + why);
-                out.report.warnings.push_back(why);
-            } else {
+            const std::string refused =
+                pattern.side == 0 ? "the selected bump stands neither above nor below the surface around it"
+                : pattern.unexplained <= bump_max_unexplained
+                    ? "the selected bump is no bump (" + fit + ": lower than " + num(bump_min_height) +
+                          " of its radius)"
+                    : "the selected bump is not one of a pattern of bumps on a smoother surface (" + fit +
+                          ", more than " + num(100 * bump_max_unexplained) +
+                          " %): the surface's own detail at this size dominates";
+            const std::string detail = "the lowpass removed detail of " + num(bump.removed_detail) +
+                                       " RMS across the selection (the threshold: " + num(bump_min_height) +
+                                       " of its radius, " + num(bump_min_height * out.feature->radius) + ")";
+            switch (bump.outcome) {
+            case SelectedBumpOutcome::PatternRemoved:
                 out.log.push_back(std::string("pattern of bumps removed (the selected one points ") +
                                   (pattern.side > 0 ? "outwards" : "inwards") + "): " + std::to_string(pattern.bumps) +
                                   " bumps of " + std::to_string(pattern.candidates) + " peaks, " + fit +
                                   "; volume removed " + num(pattern.removed_volume));
+                break;
+            case SelectedBumpOutcome::FlatLowpass: {
+                const std::string why = "fell back to the flat lowpass because " + refused + "; " + detail +
+                                        ": bumps of this size and smaller were smoothed away, their mean height kept";
+                out.log.push_back("pattern of bumps: " + why);
+                out.report.warnings.push_back(why);
+                break;
             }
-            out.points = pattern.removed ? pattern_removed : input.points;
+            case SelectedBumpOutcome::Unchanged: {
+                const std::string why = refused + ", and " + detail + ": the mesh was left as it was";
+                out.log.push_back("pattern of bumps: " + why);
+                out.report.warnings.push_back(why);
+                break;
+            }
+            }
+            out.points = bump.points;
         }
     } else {
         // The umbrella operator's frequencies are per vertex, not 1/length^2: no feature
@@ -455,7 +513,16 @@ RunOutput run_filter(const FilterSpec& spec, const ParameterValues& given, const
                                    s_feature, shape_of(spec, values), out.report, out.log);
     }
     log_filter_report(out, options);
+    // Whatever made them, a front end writes these coordinates: none may hand on a broken mesh.
+    require_finite_output(out.points);
     return out;
+}
+
+void require_finite_output(const Points& points) {
+    for (Eigen::Index i = 0; i < points.rows(); ++i)
+        if (!points.row(i).allFinite())
+            throw Error("the filtered coordinates are not finite (vertex " + std::to_string(i) +
+                        " first): the transfer function amplifies this mesh too much");
 }
 
 Mesh ellipsoid_mesh(const FeatureEllipsoid& e, int levels) {

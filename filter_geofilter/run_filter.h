@@ -88,6 +88,10 @@ void log_filter_report(RunOutput& out, const FilterOptions& options);
 // refusal; the input is never modified.
 RunOutput run_filter(const FilterSpec& spec, const ParameterValues& values, const RunInput& input);
 
+// run_filter's last step: throws Error naming the first vertex whose filtered coordinates are
+// NaN or infinite, so that no front end writes them.
+void require_finite_output(const Points& points);
+
 // The ellipsoid as a mesh (an icosphere stretched by the radii, rotated and moved).
 Mesh ellipsoid_mesh(const FeatureEllipsoid& e, int subdivision_levels = 3);
 

@@ -38,31 +38,40 @@ std::vector<double> weight_from_quality(const RunInput& input, std::vector<std::
 
 } // namespace
 
+std::vector<double> region_weight_from_values(int region, double blend_width, const RunInput& input,
+                                              const AutoBlendWidth& auto_width, std::vector<std::string>& log) {
+    if (region != 1) {
+        std::vector<double> weight = weight_from_quality(input, log);
+        log.push_back("region: the vertex quality as the weight (blendWidth is not used: the weight is the blend)");
+        return weight;
+    }
+    if (input.selected_faces.empty())
+        throw Error("region = selected faces but no faces are selected: select the region first (e.g. with the"
+                    " selection tools or Conditional Face Selection), or choose region = whole mesh");
+    if (!std::isfinite(blend_width) || blend_width < 0)
+        throw Error("blendWidth must be a finite number >= 0 (got " + num(blend_width) + "); 0 = auto");
+    std::string how = "as given";
+    if (blend_width == 0) {
+        const auto [width, chosen] = auto_width();
+        if (!(width > 0))
+            throw Error("blendWidth = 0 (auto) needs the feature frequency, and none is set: give blendWidth");
+        blend_width = width;
+        how = "auto: " + chosen;
+    }
+    std::vector<double> weight = region_weight(input.points, input.triangles, input.selected_faces, blend_width);
+    log.push_back("region: the " + std::to_string(input.selected_faces.size()) +
+                  " selected faces, fading to untouched across a band of width " + num(blend_width) + " (" + how + ")");
+    return weight;
+}
+
 Points filter_region(int region, double blend_width, const RunInput& input, const TransferFunction& g,
                      const FilterOptions& options, double s_feature, FeatureShape shape, FilterReport& report,
                      std::vector<std::string>& log) {
-    std::vector<double> weight;
-    if (region == 1) {
-        if (input.selected_faces.empty())
-            throw Error("region = selected faces but no faces are selected: select the region first (e.g. with the"
-                        " selection tools or Conditional Face Selection), or choose region = whole mesh");
-        if (!std::isfinite(blend_width) || blend_width < 0)
-            throw Error("blendWidth must be a finite number >= 0 (got " + num(blend_width) + "); 0 = auto");
-        std::string how = "as given";
-        if (blend_width == 0) {
-            if (!(s_feature > 0))
-                throw Error("blendWidth = 0 (auto) needs the feature frequency, and none is set: give blendWidth");
-            blend_width = std::sqrt((shape == FeatureShape::Sphere ? 2.0 : 1.0) / s_feature);
-            how = std::string("auto: the feature radius at s = ") + num(s_feature) +
-                  (shape == FeatureShape::Sphere ? ", sqrt(2/s)" : ", sqrt(1/s)");
-        }
-        weight = region_weight(input.points, input.triangles, input.selected_faces, blend_width);
-        log.push_back("region: the " + std::to_string(input.selected_faces.size()) +
-                      " selected faces, fading to untouched across a band of width " + num(blend_width) + " (" + how + ")");
-    } else {
-        weight = weight_from_quality(input, log);
-        log.push_back("region: the vertex quality as the weight (blendWidth is not used: the weight is the blend)");
-    }
+    const bool sphere = shape == FeatureShape::Sphere;
+    const std::vector<double> weight = region_weight_from_values(region, blend_width, input, [&] {
+        return std::make_pair(s_feature > 0 ? std::sqrt((sphere ? 2.0 : 1.0) / s_feature) : 0.0,
+                              "the feature radius at s = " + num(s_feature) + (sphere ? ", sqrt(2/s)" : ", sqrt(1/s)"));
+    }, log);
     RegionReport r;
     Points out = apply_filter_weighted(input.points, input.triangles, g, weight, options, &report, &r);
     const auto untouched = input.points.rows() - r.domain_vertices;

@@ -198,9 +198,6 @@ int run(const CliOptions& o, const CommandLineTool& tool) {
         }
     }
 
-    for (Eigen::Index i = 0; i < out.points.rows(); ++i)
-        if (!out.points.row(i).allFinite())
-            throw Error("the filtered coordinates are not finite: the transfer function amplifies this mesh too much");
     std::string design;
     const TransferPlot plot = make_plot(spec, values, out, feature, design);
     if (!plot_temporary.empty()) write_transfer_plot(plot_temporary, plot);

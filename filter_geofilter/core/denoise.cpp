@@ -4,6 +4,7 @@
 #include "patches.h"
 #include "surface_measures.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -16,6 +17,66 @@ DenoiseDesign design_denoise_from_bump(const FeatureEllipsoid& bump, FeatureShap
             "the selected bump: cutoff radius " + format_number(radius) + " = " + format_number(denoise_radius_factor) +
                 " x its radius " + format_number(bump.radius) +
                 (shape == FeatureShape::Sphere ? " (sphere-like, s = 2/R^2)" : " (cylinder-like, s = 1/R^2)")};
+}
+
+double selected_area_share(const Points& points, const Triangles& triangles, const std::vector<int>& faces) {
+    const auto face_area = [&](Eigen::Index f) {
+        const Eigen::RowVector3d a = points.row(triangles(f, 0));
+        return 0.5 * (points.row(triangles(f, 1)) - a).cross(points.row(triangles(f, 2)) - a).norm();
+    };
+    double total = 0, selected = 0;
+    for (Eigen::Index f = 0; f < triangles.rows(); ++f) total += face_area(f);
+    std::vector<bool> counted(static_cast<size_t>(triangles.rows()), false);
+    for (int f : faces)
+        if (f >= 0 && f < triangles.rows() && !counted[static_cast<size_t>(f)]) {
+            counted[static_cast<size_t>(f)] = true;
+            selected += face_area(f);
+        }
+    return total > 0 ? selected / total : 0.0;
+}
+
+namespace {
+
+double detail_removed_at(const Points& input, const Points& lowpassed, const Triangles& triangles,
+                         const std::vector<int>& faces) {
+    const Eigen::MatrixXd normal = vertex_normals(lowpassed, triangles);
+    Eigen::VectorXd area = Eigen::VectorXd::Zero(input.rows());
+    for (int f : faces) {
+        const Eigen::RowVector3d a = lowpassed.row(triangles(f, 0));
+        const double third = (lowpassed.row(triangles(f, 1)) - a).cross(lowpassed.row(triangles(f, 2)) - a).norm() / 6;
+        for (int k = 0; k < 3; ++k) area[triangles(f, k)] += third;
+    }
+    const double total = area.sum();
+    if (!(total > 0)) return 0;
+    Eigen::VectorXd moved(input.rows());
+    for (Eigen::Index v = 0; v < input.rows(); ++v) moved[v] = (input.row(v) - lowpassed.row(v)).dot(normal.row(v));
+    const double mean = area.dot(moved) / total;
+    return std::sqrt(area.dot((moved.array() - mean).square().matrix()) / total);
+}
+
+} // namespace
+
+SelectedBumpDenoise denoise_selected_bump(const Points& input, const Points& lowpassed, const Triangles& triangles,
+                                          const std::vector<int>& bump_faces, double bump_radius,
+                                          const TransferFunction& g, const FilterOptions& options) {
+    // What the lowpass kept of the bumps is computed by the same lowpass, on fields of unit
+    // height: 1e-5 of the diagonal is far below what decides the fit.
+    FilterOptions field_options = options;
+    field_options.tolerance = std::max(options.tolerance, 1e-5);
+    field_options.progress = nullptr;
+    SelectedBumpDenoise out;
+    out.points = remove_bump_pattern(input, lowpassed, triangles, bump_faces, bump_radius, g, field_options, &out.pattern);
+    out.removed_detail = detail_removed_at(input, lowpassed, triangles, bump_faces);
+    if (out.pattern.removed) {
+        out.outcome = SelectedBumpOutcome::PatternRemoved;
+    } else if (out.removed_detail > bump_min_height * bump_radius) {
+        out.outcome = SelectedBumpOutcome::FlatLowpass;
+        out.points = lowpassed;
+    } else {
+        out.outcome = SelectedBumpOutcome::Unchanged;
+        out.points = input;
+    }
+    return out;
 }
 
 std::vector<DenoiseDesign> denoise_sampling_candidates(double mean_edge_length, int order, std::optional<Operator> op) {

@@ -3,6 +3,7 @@
 // measurement (experiments/compare_denoise.py, docs/results.md), not tuned per mesh.
 #pragma once
 
+#include "bump_pattern.h"
 #include "butterworth.h"
 #include "feature.h"
 #include "filter.h"
@@ -15,6 +16,7 @@
 #include "volume.h"
 
 #include <cstdint>
+#include <iterator>
 #include <functional>
 #include <optional>
 #include <string>
@@ -38,6 +40,45 @@ struct DenoiseDesign {
 
 // From a measured bump (sphere-like s = 2/R^2 or cylinder-like 1/R^2 with R = 2 r).
 DenoiseDesign design_denoise_from_bump(const FeatureEllipsoid& bump, FeatureShape shape, int order, Operator op);
+
+// A selection is one bump of a pattern only while a lowpass cut at denoise_radius_factor
+// times its radius leaves the rest of the mesh's shape alone. That lowpass acts on discs of
+// denoise_radius_factor^2 = 4 times the bump's area; a selection of a quarter of the mesh's
+// area or more makes that disc the whole mesh, so the "bump" is the mesh (in MeshLab, often
+// a selection left over from another tool) and the sampling-noise rule serves it instead.
+// A bump the tests select covers 0.2-1 % of its mesh (the ball of its radius on the unit
+// sphere), far below; a leftover selection, typically half the mesh or more, far above.
+constexpr double denoise_largest_bump_share = 0.25;
+
+// The share of the mesh's area the faces cover (0 for a mesh of no area).
+double selected_area_share(const Points& points, const Triangles& triangles, const std::vector<int>& faces);
+
+// What Denoise did with a selected bump.
+enum class SelectedBumpOutcome {
+    PatternRemoved,  // the pattern of bumps like it was fitted and subtracted
+    FlatLowpass,     // no pattern explained it: the flat lowpass at its scale was kept instead
+    Unchanged,       // no pattern, and the lowpass removed no detail there: nothing to remove
+};
+
+struct SelectedBumpDenoise {
+    Points points;
+    SelectedBumpOutcome outcome = SelectedBumpOutcome::Unchanged;
+    BumpPatternReport pattern;
+    // Area-weighted RMS, about its mean, of how far the lowpass moved the selection's vertices
+    // along the normals: the detail it removed there (a curved surface's even shrinking is no detail).
+    double removed_detail = 0;
+};
+
+// Denoise's rule for one selected bump (`bump_faces`, measured radius `bump_radius`):
+// `lowpassed` is the input lowpassed by `g` (design_denoise_from_bump, applied with
+// `options`). The pattern of bumps like it is removed (remove_bump_pattern). When no pattern
+// explains the selection (mixed bumps and dents, a texture, noise as large as the bump),
+// returning the input would be a silent no-op; the flat lowpass is returned instead when it
+// removed detail at the selection higher than bump_min_height of its radius, the height
+// below which a selection is a flat patch; below that the input is returned unchanged.
+SelectedBumpDenoise denoise_selected_bump(const Points& input, const Points& lowpassed, const Triangles& triangles,
+                                          const std::vector<int>& bump_faces, double bump_radius,
+                                          const TransferFunction& g, const FilterOptions& options);
 
 // Per-vertex sampling noise with nothing selected. How much to smooth depends on the noise
 // and on the mesh (its sampling, its sharp features), so no single cutoff serves every scan:
@@ -136,5 +177,13 @@ struct SamplingDenoise {
 SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& triangles, int order,
                                        std::optional<Operator> op, const FilterOptions& options,
                                        int score_on_patches_above = denoise_scoring_vertices);
+
+// Denoise on a region: the blend band's width, in mean edge lengths, when blendWidth is auto.
+// The sampling-noise rule has no feature radius. Its geometric candidates cut at radii of at
+// most 2 mean edge lengths (denoise_cutoff_radii), so 3 spans the reach of any of them, and
+// a fade across fewer vertices would be a step. Known before the candidates are scored, so a
+// region Denoise cannot use is refused before the work.
+constexpr double denoise_blend_edges = 3.0;
+static_assert(denoise_blend_edges > denoise_cutoff_radii[std::size(denoise_cutoff_radii) - 1]);
 
 } // namespace geofilter

@@ -55,13 +55,33 @@ ScoringPatches scoring_patches(const Triangles& triangles, const Points& points,
     const Eigen::Index n = points.rows();
     const VertexNeighbours nb = vertex_neighbours(triangles, n);
     const auto in_face = [&](int v) { return nb.start[v + 1] > nb.start[v]; };
+    // Scans carry debris, tiny parts apart from the surface; a component no patch has reached
+    // is seeded next, so each would take a patch of its own and the score would be a mean
+    // over it. Seeds go only to components that can hold a whole patch or are at least
+    // 1 % of the mesh (a part that large is surface, not debris), or to the largest when
+    // none does.
+    const std::vector<int> label = connected_components(triangles, n);
+    std::vector<int> component_size(static_cast<size_t>(component_count(label)), 0);
+    int vertices_in_faces = 0;
+    for (int v = 0; v < n; ++v)
+        if (in_face(v)) {
+            ++component_size[static_cast<size_t>(label[static_cast<size_t>(v)])];
+            ++vertices_in_faces;
+        }
+    const int largest = component_size.empty()
+                            ? 0
+                            : *std::max_element(component_size.begin(), component_size.end());
+    const int smallest_seeded = std::min({size, std::max(1, vertices_in_faces / 100), largest});
+    const auto may_seed = [&](int v) {
+        return in_face(v) && component_size[static_cast<size_t>(label[static_cast<size_t>(v)])] >= smallest_seeded;
+    };
     std::vector<int> from_seeds(static_cast<size_t>(n), unreached);
     std::vector<bool> inside(static_cast<size_t>(n), false);
     ScoringPatches out;
     for (int patch = 0; patch < count; ++patch) {
         int seed = -1;
         for (int v = 0; v < n; ++v)
-            if (in_face(v) && !inside[static_cast<size_t>(v)] &&
+            if (may_seed(v) && !inside[static_cast<size_t>(v)] &&
                 (seed < 0 || from_seeds[static_cast<size_t>(v)] > from_seeds[static_cast<size_t>(seed)]))
                 seed = v;
         if (seed < 0) break;  // the patches hold the whole mesh

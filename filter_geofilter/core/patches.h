@@ -21,7 +21,8 @@ Submesh induced_submesh(const Points& points, const Triangles& triangles, const 
 // `count` patches of at least `size` vertices each, whole rings of the vertex graph around
 // their seeds, the seeds spread over the mesh by farthest-point sampling in rings (the first
 // is the first vertex in a face; a component no patch has reached yet is reached next), so
-// that the patches visit its different parts. Together as one submesh (patches that meet
+// that the patches visit its different parts. No seed lands on a component with fewer than
+// `size` vertices and under 1 % of the vertices in faces (scan debris), unless it is the largest. Together as one submesh (patches that meet
 // merge). `counted`, per vertex of that submesh: whether it lies at least `margin` rings
 // inside, away from where the patches were cut out of the mesh. A filter run on the submesh
 // treats a cut as a free boundary, which the mesh does not have there; the mesh's own

@@ -31,6 +31,23 @@ void check_faces(const Triangles& triangles, Eigen::Index vertex_count) {
                     std::to_string(vertex_count - 1) + ")");
 }
 
+// Exact at both ends: untouched vertices stay bit for bit, and a weight of 1 everywhere is
+// the change itself, bit for bit.
+Eigen::RowVector3d blended(const Eigen::RowVector3d& original, const Eigen::RowVector3d& changed, double w) {
+    if (w == 0) return original;
+    if (w == 1) return changed;
+    return original + w * (changed - original);
+}
+
+void check_weight(const std::vector<double>& weight, Eigen::Index n) {
+    if (static_cast<Eigen::Index>(weight.size()) != n)
+        throw Error("the weight has " + std::to_string(weight.size()) + " values for " + std::to_string(n) + " vertices");
+    for (Eigen::Index v = 0; v < n; ++v)
+        if (!(weight[v] >= 0 && weight[v] <= 1))
+            throw Error("the weight of vertex " + std::to_string(v) + " is " + format_number(weight[v]) +
+                        ": weights must lie in [0, 1]");
+}
+
 double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -121,6 +138,16 @@ std::vector<double> region_weight(const Points& points, const Triangles& triangl
     return weight;
 }
 
+Points blend_by_weight(const Points& points, const Points& changed, const std::vector<double>& weight) {
+    if (changed.rows() != points.rows() || changed.cols() != points.cols())
+        throw Error("internal: " + std::to_string(changed.rows()) + " changed points for " +
+                    std::to_string(points.rows()) + " vertices");
+    check_weight(weight, points.rows());
+    Points out = points;
+    for (Eigen::Index v = 0; v < points.rows(); ++v) out.row(v) = blended(points.row(v), changed.row(v), weight[v]);
+    return out;
+}
+
 namespace {
 Points apply_filter_weighted_unguarded(const Points& points, const Triangles& triangles, const TransferFunction& g,
                                        const std::vector<double>& weight, const FilterOptions& options,
@@ -145,12 +172,7 @@ Points apply_filter_weighted_unguarded(const Points& points, const Triangles& tr
                                        FilterReport* report_out, RegionReport* region_out) {
     const auto t0 = std::chrono::steady_clock::now();
     const Eigen::Index n = points.rows();
-    if (static_cast<Eigen::Index>(weight.size()) != n)
-        throw Error("the weight has " + std::to_string(weight.size()) + " values for " + std::to_string(n) + " vertices");
-    for (Eigen::Index v = 0; v < n; ++v)
-        if (!(weight[v] >= 0 && weight[v] <= 1))
-            throw Error("the weight of vertex " + std::to_string(v) + " is " + format_number(weight[v]) +
-                        ": weights must lie in [0, 1]");
+    check_weight(weight, n);
     check_faces(triangles, n);
     detail::check_filter_options(g, options);
     // As the whole-mesh filter does, even for vertices the region leaves alone: a result
@@ -237,9 +259,7 @@ Points apply_filter_weighted_unguarded(const Points& points, const Triangles& tr
         for (size_t i = 0; i < sub_vertex.size(); ++i) {
             const int v = sub_vertex[i];
             if (!moved[i] || !in_domain[v]) continue;
-            // w = 1 takes the filtered point as is: a weight of 1 everywhere is the filter itself.
-            if (weight[v] == 1) result.row(v) = filtered.row(static_cast<Eigen::Index>(i));
-            else result.row(v) = points.row(v) + weight[v] * (filtered.row(static_cast<Eigen::Index>(i)) - points.row(v));
+            result.row(v) = blended(points.row(v), filtered.row(static_cast<Eigen::Index>(i)), weight[v]);
         }
         if (!result.allFinite())
             throw Error("the filter produced non-finite coordinates: the transfer function amplifies this mesh too much");

@@ -25,6 +25,11 @@ double blend_profile(double distance, double width);
 std::vector<double> region_weight(const Points& points, const Triangles& triangles, const std::vector<int>& faces,
                                   double blend_width);
 
+// p_final = p + w (changed - p) for every vertex: w = 0 keeps p bit for bit, w = 1 takes the
+// changed point as is. The blend of apply_filter_weighted, for a change made some other way
+// (Denoise's sampling-noise rule). Throws Error unless the sizes agree and w lies in [0, 1].
+Points blend_by_weight(const Points& points, const Points& changed, const std::vector<double>& weight);
+
 struct RegionReport {
     int domain_vertices = 0;        // |D|: vertices with w > 0
     int ring_vertices = 0;          // vertices outside D held fixed because they share a face with D

@@ -143,3 +143,20 @@ def test_the_solve_releases_the_gil():
     # With the GIL held for the whole solve this loop could not run while it lasts.
     assert elapsed > 0.05
     assert ticks > 0.3 * elapsed / 0.002
+
+
+def test_denoise_on_a_region_through_the_module_leaves_the_rest_bit_for_bit():
+    # The selection is the region: the noise goes inside it, every vertex beyond the band stays.
+    v, f = h.icosphere(4, 1.0)
+    v, f = np.asarray(v, dtype=float), np.asarray(f, dtype=np.int32)
+    rng = np.random.default_rng(3)
+    noisy = np.ascontiguousarray(v * (1 + 0.02 * rng.standard_normal((len(v), 1))))
+    cap = np.all(noisy[f][:, :, 2] > 0.5, axis=1)
+    out, report = geofilter.denoise(noisy, f, selected_faces=cap, region=1, blendWidth=0.2)
+    assert any("sampling-noise rule" in line for line in report["log"])
+    off = lambda p: np.abs(np.linalg.norm(p, axis=1) - 1)
+    inside = np.unique(f[cap])
+    assert np.sqrt(np.mean(off(out[inside]) ** 2)) < 0.7 * np.sqrt(np.mean(off(noisy[inside]) ** 2))
+    far = noisy[:, 2] < 0.2  # the cap reaches z = 0.5, the band 0.2 along the surface at most
+    assert far.sum() > len(v) // 3
+    np.testing.assert_array_equal(out[far], noisy[far])

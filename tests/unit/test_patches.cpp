@@ -94,6 +94,38 @@ TEST(Patches, PatchesThatHoldTheWholeMeshCountEveryVertex) {
     EXPECT_EQ(std::count(p.counted.begin(), p.counted.end(), true), m.points.rows());
 }
 
+TEST(Patches, SeedsSkipScanDebris) {
+    // Ten specks of debris (a tetrahedron each) numbered before a sphere: the first seed
+    // would be the first vertex in a face, and each unreached speck would be seeded next.
+    const Mesh sphere = icosphere(4, 1.0);  // 2562 vertices
+    const int specks = 10;
+    Mesh m;
+    m.points.resize(4 * specks + sphere.points.rows(), 3);
+    m.triangles.resize(4 * specks + sphere.triangles.rows(), 3);
+    for (int k = 0; k < specks; ++k) {
+        const Eigen::RowVector3d at(3.0 + k, 0, 0);
+        m.points.row(4 * k) = at;
+        m.points.row(4 * k + 1) = at + Eigen::RowVector3d(0.01, 0, 0);
+        m.points.row(4 * k + 2) = at + Eigen::RowVector3d(0, 0.01, 0);
+        m.points.row(4 * k + 3) = at + Eigen::RowVector3d(0, 0, 0.01);
+        const int b = 4 * k;
+        m.triangles.row(4 * k) << b, b + 2, b + 1;
+        m.triangles.row(4 * k + 1) << b, b + 1, b + 3;
+        m.triangles.row(4 * k + 2) << b, b + 3, b + 2;
+        m.triangles.row(4 * k + 3) << b + 1, b + 2, b + 3;
+    }
+    m.points.bottomRows(sphere.points.rows()) = sphere.points;
+    m.triangles.bottomRows(sphere.triangles.rows()) = sphere.triangles.array() + 4 * specks;
+    const int count = 4, size = 200;
+    const ScoringPatches p = scoring_patches(m.triangles, m.points, count, size, 3);
+    EXPECT_EQ(p.patches, count);
+    for (int v : p.mesh.vertex) EXPECT_GE(v, 4 * specks) << "a patch on debris vertex " << v;
+    EXPECT_GE(p.mesh.vertex.size(), static_cast<size_t>(count * size));
+    // A mesh of only small parts still gets its patches, on the largest.
+    const ScoringPatches only_debris = scoring_patches(m.triangles.topRows(4 * specks), m.points.topRows(4 * specks), 2, size, 1);
+    EXPECT_GE(only_debris.patches, 1);
+}
+
 // The margin Denoise scores inside: there, its widest-reaching candidate lowpasses (the first
 // and last: the umbrella's lowest cutoff, the geometric operator's largest radius) run on the
 // patches give the whole mesh's result (the cut, a free boundary the mesh lacks, does not
