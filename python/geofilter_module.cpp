@@ -1,6 +1,7 @@
 // The Python module `geofilter`: the filter table's filters on numpy arrays, without
 // MeshLab. A thin adapter like the MeshLab plugins: it reads arrays and keyword arguments,
 // calls run_filter, and returns arrays and the report.
+#include "core/point_cloud_laplace.h"
 #include "exact_pairs.h"
 #include "run_filter.h"
 
@@ -145,6 +146,41 @@ py::tuple run(const FilterSpec& spec, const py::object& v, const py::object& f, 
     return py::make_tuple(array_from(out.points), report_of(out));
 }
 
+// The cloud's operator as plain numpy arrays, so that no scipy is needed: K as coordinate
+// triplets (each entry once), M's diagonal, the oriented normals for the caller to keep, and the
+// local triangles through which every filter of the module runs on the cloud.
+py::dict point_cloud_operator(const py::object& v, int neighbours) {
+    const Points points = points_from(v);
+    PointCloudLaplacian cloud;
+    {
+        py::gil_scoped_release release;
+        cloud = point_cloud_laplacian(points, PointCloudOptions{neighbours});
+    }
+    const SparseMatrix& k = cloud.laplacian.stiffness;
+    const auto entries = static_cast<py::ssize_t>(k.nonZeros());
+    py::array_t<long long> rows(entries), cols(entries);
+    py::array_t<double> values(entries);
+    py::ssize_t e = 0;
+    for (Eigen::Index col = 0; col < k.outerSize(); ++col)
+        for (SparseMatrix::InnerIterator it(k, col); it; ++it, ++e) {
+            rows.mutable_data()[e] = it.row();
+            cols.mutable_data()[e] = col;
+            values.mutable_data()[e] = it.value();
+        }
+    const Eigen::VectorXd& m = cloud.laplacian.mass;
+    py::array_t<double> mass(static_cast<py::ssize_t>(m.size()));
+    std::copy(m.data(), m.data() + m.size(), mass.mutable_data());
+    const Triangles& t = cloud.local_triangles;
+    py::array_t<int> triangles({static_cast<py::ssize_t>(t.rows()), static_cast<py::ssize_t>(3)});
+    if (t.size()) std::memcpy(triangles.mutable_data(), t.data(), sizeof(int) * static_cast<size_t>(t.size()));
+    py::dict d;
+    d["K"] = py::make_tuple(rows, cols, values);
+    d["M"] = mass;
+    d["normals"] = array_from(cloud.normals);
+    d["triangles"] = triangles;
+    return d;
+}
+
 } // namespace
 
 PYBIND11_MODULE(geofilter, m) {
@@ -210,6 +246,15 @@ PYBIND11_MODULE(geofilter, m) {
         .def_property_readonly("poles", [](const TransferFunction& g) { return g.poles; })
         .def_property_readonly("at_infinity", &TransferFunction::at_infinity)
         .def("__repr__", &TransferFunction::describe);
+
+    m.def("point_cloud_laplacian", &point_cloud_operator, py::arg("V"), py::arg("k") = PointCloudOptions{}.neighbours,
+          "The Laplace-Beltrami operator of a point cloud V (n x 3), in the units of the mesh filters' "
+          "(a sphere of radius r: 2/r^2): each point's Delaunay fan in its tangent plane among its k nearest "
+          "neighbours, the cotangent stiffness and lumped mass of all fans, divided by 3 (Sharp & Crane 2020). "
+          "Returns a dict: K = (rows, cols, values), each entry once (dense: Kd = np.zeros((n, n)); "
+          "Kd[rows, cols] = values), M = the lumped mass (n,), normals = unit normals oriented consistently "
+          "(n, 3), triangles = the fans (m, 3): any filter of this module run as filter(V, triangles) filters the "
+          "cloud with this operator.");
 
     py::list names;
     for (const FilterSpec& spec : filter_table()) names.append(spec.cli_name);

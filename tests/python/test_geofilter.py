@@ -160,3 +160,46 @@ def test_denoise_on_a_region_through_the_module_leaves_the_rest_bit_for_bit():
     far = noisy[:, 2] < 0.2  # the cap reaches z = 0.5, the band 0.2 along the surface at most
     assert far.sum() > len(v) // 3
     np.testing.assert_array_equal(out[far], noisy[far])
+
+
+def fibonacci_sphere(count, radius):
+    i = np.arange(count)
+    z = 1 - (2 * i + 1) / count
+    ring = np.sqrt(1 - z * z)
+    angle = np.pi * (3 - np.sqrt(5)) * i
+    return radius * np.column_stack([ring * np.cos(angle), ring * np.sin(angle), z])
+
+
+def test_point_cloud_laplacian_in_numpy_and_the_filters_on_its_triangles():
+    r = 0.5
+    v = fibonacci_sphere(2000, r)
+    cloud = geofilter.point_cloud_laplacian(v, k=30)
+    rows, cols, values = cloud["K"]
+    n = len(v)
+    k = np.zeros((n, n))
+    k[rows, cols] = values
+    m = cloud["M"]
+    assert len(rows) == len(set(zip(rows.tolist(), cols.tolist())))  # each entry once
+    assert np.abs(k - k.T).max() <= 1e-12 * np.abs(k).max()
+    assert np.abs(k.sum(axis=1)).max() <= 1e-10 * np.abs(k).max()
+    assert m.sum() == pytest.approx(4 * np.pi * r * r, rel=0.01)
+    for axis in range(3):
+        x = v[:, axis]
+        assert x @ k @ x / (x @ (m * x)) == pytest.approx(2 / r ** 2, rel=0.02)
+    assert (np.einsum("ij,ij->i", cloud["normals"], v / r) > 0.99).all()
+
+    # The coordinates are eigenfunctions at 2/r^2: a filter through the cloud's triangles scales
+    # the sphere by G(2/r^2).
+    triangles = cloud["triangles"]
+    assert triangles.shape[1] == 3 and triangles.max() < n
+    out, _ = geofilter.exaggerate(v, triangles, radius=r)
+    gain = geofilter.design("exaggerate", radius=r)(2 / r ** 2)
+    assert abs(gain - 1) > 0.1
+    assert np.linalg.norm(out, axis=1).mean() / r == pytest.approx(gain, rel=1e-3)
+
+    duplicated = v.copy()
+    duplicated[5] = duplicated[17]
+    with pytest.raises(geofilter.Error, match="1 exact duplicate"):
+        geofilter.point_cloud_laplacian(duplicated)
+    with pytest.raises(geofilter.Error, match="at least 31"):
+        geofilter.point_cloud_laplacian(v[:20])
