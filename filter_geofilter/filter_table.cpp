@@ -205,25 +205,10 @@ FilterSpec denoise() {
             "apply_geofilter_denoise",
             "denoise",
             FilterKind::Denoise,
-            "Removes noise without tuning. With a selection: select one bump of a pattern (bumps, dents, a"
-            " texture) and the bumps like it are removed: what a 4th-order Butterworth lowpass cut at twice the"
-            " bump's radius removes is fitted by a pattern of Gaussian bumps (one width, fitted on the selected bump"
-            " and its neighbours; one height per bump), which is subtracted, so the bumps' volume goes and the rest"
-            " of the surface stays as it was; when no pattern explains the selected bump, that flat lowpass is kept"
-            " instead (the mesh is left as it was only if the lowpass removed nothing there) and the log says why."
-            " A selection of a quarter of the mesh's area or more is no bump: it gets the rule without a selection."
-            " With a region (selected faces or quality as weight) the selection is the region, not a bump: the rule"
-            " without a selection runs and its result is faded in by the region's weight, the rest left exactly as"
-            " it was. Without: per-vertex sampling noise is removed by the same lowpass,"
-            " its cutoff and operator (Taubin's umbrella or the intrinsic Delaunay cotangent) chosen on the mesh"
-            " among 11 candidates by their estimated distance to the noise-free surface (Stein's unbiased risk"
-            " estimate; the noise's strength and direction, along the normals or in every direction, measured on"
-            " the mesh; noise along the normals leaves the vertices right across the surface,"
-            " so there only the lowpass's motion along the normals is kept, and no vertex moves farther than 3"
-            " standard deviations of the noise: farther, the lowpass would be reshaping a toe or a tip, not"
-            " removing noise), and closed parts keep their volume;"
-            " the log lists every candidate's score (each operator's cutoffs are searched downhill from the"
-            " middle one, so those beyond a higher score are not run).",
+            "Removes noise with nothing to set. Nothing selected: a scan's per-vertex sampling noise goes, with the"
+            " lowpass the filter picks on the mesh by its estimated distance to the noise-free surface (Stein's unbiased"
+            " risk estimate); one bump selected: the bumps like it go and the rest of the surface stays; with Where to"
+            " filter set, only that region is denoised. The log says what was measured and chosen, and why.",
             p};
 }
 

@@ -63,8 +63,13 @@ int main() {
     for (size_t f = 0; f < table.size(); ++f) {
         const auto& spec = table[f];
         out += "  {\"name\": " + quoted(spec.name) + ", \"python_name\": " + quoted(spec.python_name) +
-               ", \"cli_name\": " + quoted(spec.cli_name) + ", \"kind\": " + quoted(kind_name(spec.kind)) +
-               ", \"parameters\": [";
+               ", \"cli_name\": " + quoted(spec.cli_name) + ", \"kind\": " + quoted(kind_name(spec.kind));
+        if (spec.kind == geofilter::FilterKind::SecondOrder) {
+            const auto& r = spec.reference;  // the paper's design the preset is named after
+            out += ", \"reference\": {\"s1\": " + number(r.s1) + ", \"s2\": " + number(r.s2) + ", \"G0\": " + number(r.G0) +
+                   ", \"G1\": " + number(r.G1) + ", \"Ginf\": " + number(r.Ginf) + "}";
+        }
+        out += ", \"parameters\": [";
         for (size_t p = 0; p < spec.parameters.size(); ++p) {
             const auto& param = spec.parameters[p];
             out += std::string(p ? "," : "") + "\n    {\"name\": " + quoted(param.name) + ", \"type\": " +

@@ -34,7 +34,7 @@ class Refusals(unittest.TestCase):
 
     def test_negative_s1(self):
         self.expect_failure("s1", [h.sphere(1, 2), h.geofilter("GeoFilter: Lowpass", useSelection=False, s1=-1.0)],
-                            "s1 must be > 0")
+                            "s1 and s2 must be finite frequencies >= 0")
 
     def test_negative_pole(self):
         self.expect_failure("p2", [h.sphere(1, 2), h.geofilter("GeoFilter: Pole-Zero", useSelection=False, p2=-5.0)],

@@ -21,7 +21,7 @@ def _load():
                            " (any build of the project does) or set GEOFILTER_FILTER_TABLE") from None
 
 
-TABLE = _load()  # [{name, python_name, cli_name, kind, parameters: [{name, type, default, choices}]}]
+TABLE = _load()  # [{name, python_name, cli_name, kind, [reference,] parameters: [{name, type, default, choices}]}]
 
 
 def by_kind(*kinds):
