@@ -2,6 +2,7 @@
 # Screenshots of the GeoFilter plugin in the MeshLab 2020.09, 2022.02 and 2025.07 GUIs, under Xvfb:
 #   docs/screenshots/meshlab-<version>-menu.png       Filters > Smoothing, Fairing and Deformation
 #   docs/screenshots/meshlab-<version>-geofilter.png  the GeoFilter: Lowpass dialog on the bunny
+#   docs/screenshots/meshlab-<version>-preview.png    Preview ticked, the feature radius raised
 #
 # Needs: xvfb, xdotool, imagemagick (import); the default build (build/meshlab-prefix, from
 # scripts/build.sh), build-2022/ (scripts/test-meshlab2022.sh) and build-2022-sid/
@@ -127,10 +128,27 @@ shoot() { # version executable
     xdotool windowmove "$dialog" 522 100
     sleep 1
     import -window root "$out/meshlab-$version-geofilter.png"
+
+    # Preview: tick the box under the parameters (the dialog's last row above its buttons),
+    # then type a larger feature radius as a percentage of the diagonal (8 %); the filter
+    # reruns through its cache at each change.
+    local X Y WIDTH HEIGHT SCREEN
+    eval "$(xdotool getwindowgeometry --shell "$dialog")"
+    xdotool mousemove $((X + 16)) $((Y + HEIGHT - preview_from_bottom)) click 1
+    sleep 4
+    xdotool mousemove $((X + radius_field_x)) $((Y + radius_field_y)) click --repeat 3 1
+    xdotool type --delay 60 "8"
+    xdotool key Tab
+    sleep 6
+    import -window root "$out/meshlab-$version-preview.png"
     kill "$pid"
     wait "$pid" 2>/dev/null || true
-    echo "screenshots: $out/meshlab-$version-menu.png, $out/meshlab-$version-geofilter.png"
+    echo "screenshots: $out/meshlab-$version-menu.png, $out/meshlab-$version-geofilter.png, $out/meshlab-$version-preview.png"
 }
+
+# Where the dialog's Preview box and feature-radius field are, from its frame's corner: the
+# Preview box sits this far above the frame's bottom, the radius field at this offset.
+preview_from_bottom=82 radius_field_x=387 radius_field_y=183
 
 mkdir -p "$out"
 [ "$shoot2020" = 0 ] || shoot 2020.09 "$ml2020"
