@@ -630,10 +630,10 @@ void read_off(Data& d, const std::string& path, const std::string& bytes) {
     store_faces(d, faces, "OFF");
 }
 
-std::string off_text(const Data* d, const Points& p, const Triangles& t) {
+std::string off_text(const Data* d, const Points& p, const Triangles& t, const Points* cloud_normals) {
     const std::string keyword = d ? d->off_keyword : "OFF";
     const bool normals = keyword.find('N') != std::string::npos;
-    const Points n = normals ? vertex_normals(p, t) : Points();
+    const Points n = !normals ? Points() : cloud_normals ? *cloud_normals : vertex_normals(p, t);
     std::string out = keyword + "\n" + std::to_string(p.rows()) + " " + std::to_string(t.rows()) + " 0\n";
     for (Eigen::Index i = 0; i < p.rows(); ++i) {
         out += full_precision(p(i, 0)) + " " + full_precision(p(i, 1)) + " " + full_precision(p(i, 2));
@@ -781,7 +781,7 @@ void save(const std::string& path, const Data* d, const Points& p, const Triangl
     switch (format) {
     case MeshFormat::Ply: text = ply_text(d, p, t, selected, cloud_normals); break;
     case MeshFormat::Obj: text = obj_text(p, t, cloud_normals); break;
-    case MeshFormat::Off: text = off_text(d, p, t); break;
+    case MeshFormat::Off: text = off_text(d, p, t, cloud_normals); break;
     case MeshFormat::Stl: text = stl_text(p, t); break;
     case MeshFormat::Xyz: text = xyz_text(p, cloud_normals); break;
     }
