@@ -59,7 +59,7 @@ FeatureShape shape_of(const FilterSpec& spec, const ParameterValues& values) {
 std::string describe_feature(const FeatureEllipsoid& e) {
     std::ostringstream os;
     os.precision(5);
-    os << e.face_count << " selected faces, area " << e.area << "; ellipsoid radii " << e.radii[0] << ", " << e.radii[1]
+    os << e.selection_size() << ", area " << e.area << "; ellipsoid radii " << e.radii[0] << ", " << e.radii[1]
        << ", " << e.radii[2] << "; centre (" << e.center[0] << ", " << e.center[1] << ", " << e.center[2]
        << "); axes (" << e.axes(0, 0) << ", " << e.axes(1, 0) << ", " << e.axes(2, 0) << "), (" << e.axes(0, 1) << ", "
        << e.axes(1, 1) << ", " << e.axes(2, 1) << "), (" << e.axes(0, 2) << ", " << e.axes(1, 2) << ", " << e.axes(2, 2)
@@ -126,7 +126,7 @@ TransferFunction design_from_values(const FilterSpec& spec, const ParameterValue
                                        " ratio s2/s1 = " + num(ratio);
         if (feature) {
             const double measured = feature->frequency(shape);
-            log.push_back("s1 = " + num(measured) + " from " + std::to_string(feature->face_count) + " selected faces (" +
+            log.push_back("s1 = " + num(measured) + " from " + feature->selection_size() + " (" +
                           shape_name + ", r = " + num(feature->radius) + ")" +
                           (s.s1 > 0 ? ", instead of the typed " + num(s.s1) : std::string()) + "; s2 = " +
                           num(measured * ratio) + ratio_note +
@@ -171,7 +171,7 @@ TransferFunction design_from_values(const FilterSpec& spec, const ParameterValue
             for (double& c : corners) c *= scale;
             log.push_back("corner " + std::string(corner < param::max_pole_zero ? "z" : "p") +
                           std::to_string(corner % param::max_pole_zero + 1) + " = " + num(measured) + " from " +
-                          std::to_string(feature->face_count) + " selected faces (" + shape_name + "), instead of the typed " +
+                          feature->selection_size() + " (" + shape_name + "), instead of the typed " +
                           num(corners[corner]) + "; all corners scaled by " + num(scale));
             if (s1_used) *s1_used = measured;
         } else if (const double r = value_of(spec, values, param::radius); r != 0) {
@@ -307,7 +307,24 @@ void log_filter_report(RunOutput& out, const FilterOptions& options) {
     if (!r.reused.empty()) out.log.push_back("reused from the previous run on this mesh: " + r.reused);
 }
 
-RunOutput run_filter(const FilterSpec& spec, const ParameterValues& given, const RunInput& input) {
+namespace {
+
+// On a cloud the operator is the cloud's own: its fans are a non-manifold soup, which the
+// intrinsic Delaunay flips cannot take; the umbrella operator (the fans' graph) still can.
+std::optional<Operator> cloud_operator(const FilterSpec& spec, const ParameterValues& values, bool has_feature) {
+    const std::optional<Operator> op = operator_from_values(spec, values, has_feature);
+    if (op == Operator::IntrinsicDelaunay)
+        throw Error("operator = intrinsic Delaunay needs a triangle mesh; a point cloud's Laplacian is built from its"
+                    " points (its local Delaunay triangles): choose Automatic or cotangent");
+    // Denoise's Automatic tries the intrinsic Delaunay family on a mesh; on a cloud its
+    // geometric family is the cloud's cotangent operator.
+    return op ? op : std::optional<Operator>(Operator::Cotangent);
+}
+
+// The filtering itself, for a mesh or for a cloud's surface (`cloud` set: `input` carries the
+// cloud's local triangles and the selected faces derived from its selected points).
+RunOutput filter_surface(const FilterSpec& spec, const ParameterValues& given, const RunInput& input,
+                         const CloudSurface* cloud) {
     ParameterValues values = given;
     complete_lengths(spec, values, bounding_box_diagonal(input.points));
     const int region = spec.parameter(param::region) ? choice_of(spec, values, param::region) : 0;
@@ -316,7 +333,17 @@ RunOutput run_filter(const FilterSpec& spec, const ParameterValues& given, const
                                (value_of(spec, values, param::use_selection) != 0 &&
                                 !(spec.kind == FilterKind::Denoise && region != 0));
     std::optional<FeatureEllipsoid> feature;
-    if (use_selection) {
+    if (use_selection && cloud) {
+        // The feature is the selected points' own shape; the derived faces (fans inside the
+        // selection) would drop the points along its rim.
+        if (input.selected_vertices.empty())
+            throw Error(spec.kind == FilterKind::Measure
+                            ? "no points of the cloud are selected: select the feature's points to measure first"
+                            : "useSelection is on but no points of the cloud are selected: select the feature's points"
+                              " (e.g. geofilter --select-sphere, or selected_vertices), or turn useSelection off and"
+                              " give the radius");
+        feature = measure_feature_of_points(input.points, input.selected_vertices, cloud->cloud.laplacian.mass);
+    } else if (use_selection) {
         if (input.selected_faces.empty())
             throw Error(spec.kind == FilterKind::Measure
                             ? "no faces are selected: select the feature to measure first"
@@ -346,6 +373,9 @@ RunOutput run_filter(const FilterSpec& spec, const ParameterValues& given, const
     }
 
     FilterOptions options = filter_options(spec, values);
+    if (cloud && options.fix_boundary)
+        throw Error("fixBoundary keeps a mesh's open boundary in place; a point cloud has no faces to tell where its"
+                    " boundary is: turn fixBoundary off");
     options.progress = input.progress;
     options.external_solver = input.external_solver;
     options.complex_factorization = input.complex_factorization;
@@ -388,7 +418,9 @@ RunOutput run_filter(const FilterSpec& spec, const ParameterValues& given, const
                           (sampling_why.empty() ? std::string(", nothing selected") : ": " + sampling_why));
         const int order = order_of(spec, values);
         sampled = denoise_sampling_noise(input.points, input.triangles, order,
-                                         operator_from_values(spec, values, false), options);
+                                         cloud ? cloud_operator(spec, values, false)
+                                               : operator_from_values(spec, values, false),
+                                         options);
         const DenoiseDesign& d = sampled->design;
         out.op = d.op;
         out.transfer = d.g;
@@ -425,6 +457,7 @@ RunOutput run_filter(const FilterSpec& spec, const ParameterValues& given, const
                           num(d.cutoff) + ", operator " + operator_name(d.op));
         log_response(spec, values, out);
     } else {
+        if (cloud) cloud_operator(spec, values, feature.has_value());  // refuses intrinsic Delaunay
         out = design_run(spec, values, feature);
     }
     options.op = out.op;
@@ -515,6 +548,81 @@ RunOutput run_filter(const FilterSpec& spec, const ParameterValues& given, const
     log_filter_report(out, options);
     // Whatever made them, a front end writes these coordinates: none may hand on a broken mesh.
     require_finite_output(out.points);
+    return out;
+}
+
+} // namespace
+
+bool is_point_cloud(const Points& points, const Triangles& triangles) {
+    return points.rows() > 0 && triangles.rows() == 0;
+}
+
+CloudSurface as_surface_for_filtering(const Points& points, const std::vector<int>& selected_points) {
+    std::vector<char> selected(static_cast<size_t>(points.rows()), 0);
+    for (int i : selected_points) {
+        if (i < 0 || i >= points.rows())
+            throw Error("selected point index " + std::to_string(i) + " is out of range (the cloud has " +
+                        std::to_string(points.rows()) + " points)");
+        selected[i] = 1;
+    }
+    CloudSurface s;
+    s.cloud = point_cloud_laplacian(points);
+    const Triangles& t = s.cloud.local_triangles;
+    if (!selected_points.empty())
+        for (Eigen::Index f = 0; f < t.rows(); ++f)
+            if (selected[t(f, 0)] && selected[t(f, 1)] && selected[t(f, 2)]) s.selected_faces.push_back(static_cast<int>(f));
+    // A point far from the rest still gets its k neighbours, across the gap: its fan's long
+    // triangles pull it towards them, which is what a lowpass does to an outlier, so it is
+    // filtered, with a warning, not refused.
+    const NeighbourTable& nb = s.cloud.neighbours;
+    std::vector<double> spacing(static_cast<size_t>(points.rows()));
+    for (Eigen::Index i = 0; i < points.rows(); ++i) spacing[i] = (points.row(nb(i, 0)) - points.row(i)).norm();
+    std::vector<double> sorted = spacing;
+    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+    const double median = sorted[sorted.size() / 2], isolated_factor = 10;
+    long isolated = 0, first = -1;
+    for (size_t i = 0; i < spacing.size(); ++i)
+        if (spacing[i] > isolated_factor * median) {
+            if (first < 0) first = static_cast<long>(i);
+            ++isolated;
+        }
+    if (isolated > 0)
+        s.warnings.push_back(std::to_string(isolated) + " isolated point(s) (point " + std::to_string(first) +
+                             " first): the nearest other point is more than " + num(isolated_factor) +
+                             " times the median spacing " + num(median) +
+                             " away; their neighbourhoods reach across the gap and the filter pulls them towards it");
+    return s;
+}
+
+RunOutput run_filter(const FilterSpec& spec, const ParameterValues& values, const RunInput& input) {
+    if (!is_point_cloud(input.points, input.triangles)) return filter_surface(spec, values, input, nullptr);
+    if (!input.selected_faces.empty())
+        throw Error("the input is a point cloud (points and no faces), yet " + std::to_string(input.selected_faces.size()) +
+                    " faces are given as selected: a cloud's selection is its points (selected vertices)");
+    const CloudSurface surface = as_surface_for_filtering(input.points, input.selected_vertices);
+    const int region = spec.parameter(param::region) ? choice_of(spec, values, param::region) : 0;
+    if (region == 1 && input.selected_vertices.empty())
+        throw Error("region = selected faces takes a point cloud's selected points as the region, and none are"
+                    " selected: select the region's points first, or choose region = whole mesh");
+    // Region = selected faces, and Denoise's bump rule, work on the fans inside the selection.
+    const bool uses_selected_faces =
+        region == 1 || (spec.kind == FilterKind::Denoise && value_of(spec, values, param::use_selection) != 0);
+    if (uses_selected_faces && !input.selected_vertices.empty() && surface.selected_faces.empty())
+        throw Error("the " + std::to_string(input.selected_vertices.size()) +
+                    " selected points of the cloud enclose none of its local triangles, and " +
+                    (region == 1 ? "region = selected faces" : "Denoise's selected bump") +
+                    " needs the surface between them: select a patch of neighbouring points");
+    RunInput on_surface{input.points,  surface.cloud.local_triangles, surface.selected_faces, input.progress,
+                        input.vertex_quality, input.cache, input.external_solver, input.complex_factorization,
+                        input.selected_vertices};
+    RunOutput out = filter_surface(spec, values, on_surface, &surface);
+    std::vector<std::string> head{"point cloud: " + std::to_string(input.points.rows()) + " points, k = " +
+                                  std::to_string(surface.cloud.neighbours.cols()) + " neighbours, " +
+                                  std::to_string(surface.cloud.local_triangles.rows()) +
+                                  " local triangles (the cloud's Laplacian)"};
+    for (const auto& w : surface.warnings) head.push_back("warning: " + w);
+    out.log.insert(out.log.begin(), head.begin(), head.end());
+    out.normals = surface.cloud.normals;
     return out;
 }
 

@@ -5,6 +5,7 @@
 
 #include "core/feature.h"
 #include "core/filter.h"
+#include "core/point_cloud_laplace.h"
 #include "core/types.h"
 #include "filter_table.h"
 
@@ -35,6 +36,10 @@ struct RunInput {
     // Exact solves of complex pole pairs (FilterOptions::complex_factorization); adapters pass
     // exact_pair_factorization() (exact_pairs.h), empty: CG for every pair.
     ComplexShiftedFactorization complex_factorization;
+    // A point cloud's selected points (vertex indices): its feature for useSelection and its
+    // region for region = selected faces. Read only when the input is a cloud (no triangles);
+    // a mesh's selection is its faces.
+    std::vector<int> selected_vertices;
 };
 
 struct RunOutput {
@@ -46,6 +51,7 @@ struct RunOutput {
     double s2_used = 0;                         // second-order filters: the unit-gain frequency used
     double radius_used = 0;                     // the feature radius behind s1_used (0: typed frequencies)
     Operator op = Operator::Cotangent;          // the Laplacian the filter ran on
+    Points normals;                             // a point cloud's estimated unit normals (empty for a mesh)
     FilterReport report;
     std::vector<std::string> log;               // human-readable lines, in order
 };
@@ -86,7 +92,27 @@ void log_filter_report(RunOutput& out, const FilterOptions& options);
 
 // Runs the filter. Throws Error (with the message an adapter shows verbatim) on any
 // refusal; the input is never modified.
+// Points and no triangles are a point cloud: every filter runs unchanged on the triangles of
+// the cloud's own Laplacian (as_surface_for_filtering), and its selection is its points
+// (selected_vertices); the output has the filtered points and the estimated normals.
 RunOutput run_filter(const FilterSpec& spec, const ParameterValues& values, const RunInput& input);
+
+// Whether run_filter takes the input as a point cloud: points, no triangles.
+bool is_point_cloud(const Points& points, const Triangles& triangles);
+
+// What the filters run on for a point cloud: its points and the local Delaunay fans of its
+// Laplacian (point_cloud_laplace.h) as the triangles, whose cotangent operator is the cloud's
+// (times 3, which M^-1 K cancels), so a filter designed for meshes means the same on it. The
+// selected points become the selected faces: the fan triangles all three of whose corners are
+// selected, which region = selected faces and Denoise's bump rule use like a mesh's selection.
+struct CloudSurface {
+    PointCloudLaplacian cloud;        // K, M, normals, neighbours, local_triangles
+    std::vector<int> selected_faces;  // rows of cloud.local_triangles inside the selected points
+    std::vector<std::string> warnings;
+};
+// Throws Error naming the problem (too few points for the neighbourhoods, duplicates,
+// non-finite coordinates, neighbourhoods on a line, selected indices out of range).
+CloudSurface as_surface_for_filtering(const Points& points, const std::vector<int>& selected_points);
 
 // run_filter's last step: throws Error naming the first vertex whose filtered coordinates are
 // NaN or infinite, so that no front end writes them.

@@ -40,8 +40,11 @@ Points points_from(const py::object& object) {
     return p;
 }
 
+// None or no rows: a point cloud (run_filter filters it through its own Laplacian).
 Triangles triangles_from(const py::object& object) {
+    if (object.is_none()) return Triangles(0, 3);
     const py::array raw = py::array::ensure(object);
+    if (raw && raw.ndim() == 2 && raw.shape(0) == 0 && raw.shape(1) == 3) return Triangles(0, 3);
     if (!raw || raw.ndim() != 2 || raw.shape(1) != 3)
         throw py::value_error("F must be an integer array of shape (m, 3), got " +
                               (raw ? shape_of(raw) : std::string("a non-array")));
@@ -60,10 +63,12 @@ Triangles triangles_from(const py::object& object) {
     return t;
 }
 
-std::vector<int> faces_from(const py::object& object) {
+// selected_faces or selected_vertices (`what`): indices or a boolean mask.
+std::vector<int> indices_from(const py::object& object, const std::string& what = "selected_faces",
+                              const std::string& item = "face") {
     if (object.is_none()) return {};
     const py::array raw = py::array::ensure(object);
-    if (!raw || raw.ndim() != 1) throw py::value_error("selected_faces must be a 1-D array of face indices or a boolean mask");
+    if (!raw || raw.ndim() != 1) throw py::value_error(what + " must be a 1-D array of " + item + " indices or a boolean mask");
     std::vector<int> faces;
     if (raw.dtype().kind() == 'b') {
         const auto mask = py::array_t<bool, py::array::c_style | py::array::forcecast>::ensure(raw);
@@ -71,8 +76,9 @@ std::vector<int> faces_from(const py::object& object) {
             if (mask.data()[f]) faces.push_back(static_cast<int>(f));
         return faces;
     }
+    if (raw.size() == 0) return faces;
     if (raw.dtype().kind() != 'i' && raw.dtype().kind() != 'u')
-        throw py::type_error("selected_faces must hold face indices (integers) or be a boolean mask");
+        throw py::type_error(what + " must hold " + item + " indices (integers) or be a boolean mask");
     const IndexArray a = IndexArray::ensure(raw);
     for (py::ssize_t i = 0; i < a.size(); ++i) faces.push_back(static_cast<int>(a.data()[i]));
     return faces;
@@ -108,6 +114,7 @@ py::dict report_of(const RunOutput& out) {
     r["relative_residual"] = out.report.relative_residual;
     r["components"] = out.report.components;
     r["warnings"] = out.report.warnings;
+    if (out.normals.rows() > 0) r["normals"] = array_from(out.normals);  // a cloud's estimated normals
     r["seconds"] = py::dict(py::arg("assembly") = out.report.seconds_assembly,
                             py::arg("factorization") = out.report.seconds_factorization,
                             py::arg("solve") = out.report.seconds_solve, py::arg("total") = out.report.seconds_total);
@@ -124,23 +131,31 @@ py::dict feature_of(const FeatureEllipsoid& e) {
     d["radius"] = e.radius;
     d["area"] = e.area;
     d["face_count"] = e.face_count;
+    d["point_count"] = e.point_count;
     d["sphere_frequency"] = e.frequency(FeatureShape::Sphere);
     d["cylinder_frequency"] = e.frequency(FeatureShape::Cylinder);
     return d;
 }
 
 py::tuple run(const FilterSpec& spec, const py::object& v, const py::object& f, const py::object& selected,
-              const py::kwargs& kwargs) {
+              const py::object& selected_points, const py::kwargs& kwargs) {
     const Points points = points_from(v);
     const Triangles triangles = triangles_from(f);
-    const std::vector<int> faces = faces_from(selected);
-    ParameterValues values = values_from(spec, kwargs, !faces.empty());
-    if (kwargs.contains(param::radius) && !faces.empty() && values.at(param::use_selection) != 0)
-        throw py::value_error("radius and selected_faces both give the feature: pass one, or useSelection=False");
+    const std::vector<int> faces = indices_from(selected);
+    std::vector<int> vertices = indices_from(selected_points, "selected_vertices", "vertex");
+    if (!vertices.empty() && triangles.rows() > 0)
+        throw py::value_error("selected_vertices selects a point cloud's points (F omitted); a mesh's selection is"
+                              " selected_faces");
+    const bool has_selection = !faces.empty() || !vertices.empty();
+    ParameterValues values = values_from(spec, kwargs, has_selection);
+    if (kwargs.contains(param::radius) && has_selection && values.at(param::use_selection) != 0)
+        throw py::value_error("radius and " + std::string(faces.empty() ? "selected_vertices" : "selected_faces") +
+                              " both give the feature: pass one, or useSelection=False");
     RunOutput out;
     {
         py::gil_scoped_release release;  // the solve may take seconds: let other threads run
-        out = run_filter(spec, values, RunInput{points, triangles, faces, {}, nullptr, nullptr, {}, exact_pair_factorization()});
+        out = run_filter(spec, values, RunInput{points, triangles, faces, {}, nullptr, nullptr, {}, exact_pair_factorization(),
+                                                std::move(vertices)});
     }
     if (spec.kind == FilterKind::Measure) return py::make_tuple(feature_of(*out.feature), report_of(out));
     return py::make_tuple(array_from(out.points), report_of(out));
@@ -202,22 +217,27 @@ PYBIND11_MODULE(geofilter, m) {
         if (spec.kind == FilterKind::Measure) {
             m.def(
                 spec.cli_name.c_str(),
-                [s](const py::object& v, const py::object& f, const py::object& selected) {
-                    return run(*s, v, f, selected, py::kwargs());
+                [s](const py::object& v, const py::object& f, const py::object& selected, const py::object& points) {
+                    return run(*s, v, f, selected, points, py::kwargs());
                 },
-                py::arg("V"), py::arg("F"), py::arg("selected_faces"),
-                ("Fits the feature ellipsoid to the selected faces (indices or a boolean mask); returns (feature, report)."
+                py::arg("V"), py::arg("F") = py::none(), py::arg("selected_faces") = py::none(), py::kw_only(),
+                py::arg("selected_vertices") = py::none(),
+                ("Fits the feature ellipsoid to the selected faces (indices or a boolean mask), or on a point cloud"
+                 " (F None) to selected_vertices; returns (feature, report)."
                  "\n\n" + doc).c_str());
             continue;
         }
         m.def(
             spec.cli_name.c_str(),
-            [s](const py::object& v, const py::object& f, const py::object& selected, const py::kwargs& kwargs) {
-                return run(*s, v, f, selected, kwargs);
-            },
-            py::arg("V"), py::arg("F"), py::kw_only(), py::arg("selected_faces") = py::none(),
+            [s](const py::object& v, const py::object& f, const py::object& selected, const py::object& points,
+                const py::kwargs& kwargs) { return run(*s, v, f, selected, points, kwargs); },
+            py::arg("V"), py::arg("F") = py::none(), py::kw_only(), py::arg("selected_faces") = py::none(),
+            py::arg("selected_vertices") = py::none(),
             ("Returns (V_filtered, report). selected_faces (indices or a boolean mask) is the feature, as MeshLab's"
-             " selection (useSelection); radius=r gives its size instead (default: a few % of the diagonal).\n\n" +
+             " selection (useSelection); radius=r gives its size instead (default: a few % of the diagonal)."
+             " F omitted, None or empty: V is a point cloud, filtered through its own Laplacian"
+             " (point_cloud_laplacian), its selection selected_vertices and report['normals'] its estimated"
+             " normals.\n\n" +
              doc).c_str());
     }
 

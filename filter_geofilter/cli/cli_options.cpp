@@ -387,7 +387,9 @@ std::string help_text(const FilterSpec* preset) {
         os << wrap("Filters a triangle mesh by the frequency of its features (GeoFilter, Kim & Rossignac 2005):"
                    " each eigenmode of the Laplace-Beltrami operator, of frequency s, is scaled by a gain G(s)."
                    " A sphere-like feature of radius r has s = 2/r^2, a cylinder-like one s = 1/r^2. Meshes are"
-                   " read and written as " + std::string("PLY, OBJ, OFF or STL") + " (by extension).",
+                   " read and written as " + std::string("PLY, OBJ, OFF or STL") + " (by extension). A point cloud (PLY,"
+                   " OBJ or XYZ with vertices and no faces) is filtered through its own Laplacian and written"
+                   " with its estimated normals; --select-sphere and --select-box select its points.",
                    0);
         os << "\npresets:\n";
         for (const auto& f : filter_table())

@@ -139,15 +139,22 @@ int run(const CliOptions& o, const CommandLineTool& tool) {
     if (tool.filter_file && !measure) filtered_elsewhere = tool.filter_file(o, values, mesh_temporary, log);
     RunOutput out;
     std::optional<MeshFile> mesh;
-    std::vector<int> selected;
+    std::vector<int> selected, selected_points;
+    bool cloud = false;
     if (filtered_elsewhere) {
         out = std::move(*filtered_elsewhere);
         if (out.radius_used > 0) feature = {true, out.radius_used};
     } else {
         mesh.emplace(MeshFile::read(o.input));
-        log.push_back("read " + o.input + ": " + std::to_string(mesh->points().rows()) + " vertices, " +
-                      std::to_string(mesh->triangles().rows()) + " triangles (" + format_name(mesh->format()) + ")");
+        cloud = is_point_cloud(mesh->points(), mesh->triangles());
+        log.push_back("read " + o.input + ": " + std::to_string(mesh->points().rows()) +
+                      (cloud ? " points and no faces: a point cloud"
+                             : " vertices, " + std::to_string(mesh->triangles().rows()) + " triangles") +
+                      " (" + format_name(mesh->format()) + ")");
         for (const auto& note : mesh->notes()) log.push_back(note);
+        if (cloud && o.select_stored)
+            throw Error("--select-stored reads a face selection and '" + o.input +
+                        "' is a point cloud (no faces): select its points with --select-sphere or --select-box");
         if (o.select_stored && !mesh->has_stored_flags())
             throw Error("--select-stored: '" + o.input + "' stores no face selection (only PLY can: in MeshLab, export"
                         " with the Flags box ticked)");
@@ -157,8 +164,9 @@ int run(const CliOptions& o, const CommandLineTool& tool) {
             log.push_back("the input stores a selection of " + std::to_string(mesh->stored_selection().size()) +
                           " faces; --select-stored would take the feature from it");
 
+        if (cloud && o.selects_region()) selected_points = select_points(mesh->points(), o, log);
         selected =
-            o.selects_region()
+            o.selects_region() && !cloud
                 ? select_faces(mesh->points(), mesh->triangles(), o, o.select_stored ? mesh->stored_selection() : std::vector<int>{}, log)
                 : std::vector<int>{};
 
@@ -169,11 +177,13 @@ int run(const CliOptions& o, const CommandLineTool& tool) {
             return interrupted == 0;
         };
         if (spec.parameter(param::region) && values.at(param::region) == 1 && !o.selects_region())
-            throw Error("--region selected filters only the selected faces: give them with --select-sphere, --select-box"
-                        " or --select-stored");
+            throw Error(cloud ? "--region selected filters only the selected points of the cloud: give them with"
+                                " --select-sphere or --select-box"
+                              : "--region selected filters only the selected faces: give them with --select-sphere,"
+                                " --select-box or --select-stored");
         out =
             run_filter(spec, values, RunInput{mesh->points(), mesh->triangles(), selected, progress, &mesh->vertex_quality(),
-                                              nullptr, tool.external_solver, tool.complex_factorization});
+                                              nullptr, tool.external_solver, tool.complex_factorization, selected_points});
         bar.clear();
         if (interrupted) throw Error("interrupted");
         if (out.radius_used > 0) feature = {true, out.radius_used};
@@ -191,7 +201,9 @@ int run(const CliOptions& o, const CommandLineTool& tool) {
             // 10 digits: the measurement is the result here, and a script may compare it.
             summary << program << ": measure: r = " << num(e.radius, 10) << ": sphere-like s = 2/r^2 = "
                     << num(e.frequency(FeatureShape::Sphere), 10) << ", cylinder-like s = 1/r^2 = "
-                    << num(e.frequency(FeatureShape::Cylinder), 10) << " (" << e.face_count << " faces)";
+                    << num(e.frequency(FeatureShape::Cylinder), 10) << " ("
+                    << (e.point_count > 0 ? std::to_string(e.point_count) + " points" : std::to_string(e.face_count) + " faces")
+                    << ")";
             if (!o.output.empty()) summary << "; ellipsoid written to " << o.output;
             std::cout << summary.str() << std::endl;
             return 0;
@@ -201,7 +213,7 @@ int run(const CliOptions& o, const CommandLineTool& tool) {
     std::string design;
     const TransferPlot plot = make_plot(spec, values, out, feature, design);
     if (!plot_temporary.empty()) write_transfer_plot(plot_temporary, plot);
-    if (mesh) mesh->write(mesh_temporary, out.points, selected);
+    if (mesh) mesh->write(mesh_temporary, out.points, selected, cloud ? &out.normals : nullptr);
     if (interrupted) throw Error("interrupted");
     outputs.commit();
     log.insert(log.end(), out.log.begin(), out.log.end());

@@ -30,6 +30,32 @@ std::string describe_box(const Points& points) {
 
 } // namespace
 
+std::vector<int> select_points(const Points& points, const CliOptions& options, std::vector<std::string>& log) {
+    std::vector<int> selected;
+    const auto take = [&](const std::string& what, const auto& inside) {
+        size_t found = 0;
+        for (Eigen::Index i = 0; i < points.rows(); ++i)
+            if (inside(Eigen::Vector3d(points.row(i).transpose()))) {
+                selected.push_back(int(i));
+                ++found;
+            }
+        if (found == 0) throw Error(what + " holds no point of the cloud: " + describe_box(points));
+        log.push_back(what + ": " + std::to_string(found) + " points");
+    };
+    for (const auto& s : options.spheres)
+        take("--select-sphere " + num(s.center[0]) + "," + num(s.center[1]) + "," + num(s.center[2]) + "," + num(s.radius),
+             [&](const Eigen::Vector3d& p) { return (p - s.center).squaredNorm() <= s.radius * s.radius; });
+    for (const auto& b : options.boxes)
+        take("--select-box " + num(b.low[0]) + "," + num(b.low[1]) + "," + num(b.low[2]) + "," + num(b.high[0]) + "," +
+                 num(b.high[1]) + "," + num(b.high[2]),
+             [&](const Eigen::Vector3d& p) {
+                 return (p.array() >= b.low.array()).all() && (p.array() <= b.high.array()).all();
+             });
+    std::sort(selected.begin(), selected.end());
+    selected.erase(std::unique(selected.begin(), selected.end()), selected.end());
+    return selected;
+}
+
 std::vector<int> select_faces(const Points& points, const Triangles& triangles, const CliOptions& options,
                               const std::vector<int>& stored, std::vector<std::string>& log) {
     std::vector<int> selected = stored;

@@ -14,4 +14,8 @@ namespace geofilter::cli {
 std::vector<int> select_faces(const Points& points, const Triangles& triangles, const CliOptions& options,
                               const std::vector<int>& stored, std::vector<std::string>& log);
 
+// A point cloud's points inside any of the regions (--select-sphere, --select-box), in
+// ascending order. Logs how many each region holds; refuses a region that holds none.
+std::vector<int> select_points(const Points& points, const CliOptions& options, std::vector<std::string>& log);
+
 } // namespace geofilter::cli

@@ -448,8 +448,9 @@ void put_as(std::string& out, PlyType t, double v) {
 }
 
 // Binary little-endian PLY: positions in double so that nothing the solver computed is lost.
-std::string ply_text(const Data* d, const Points& p, const Triangles& t, const std::vector<int>& selected) {
-    const bool vn = d && d->vertex_normals, fn = d && d->face_normals;
+std::string ply_text(const Data* d, const Points& p, const Triangles& t, const std::vector<int>& selected,
+                     const Points* given_normals) {
+    const bool vn = (d && d->vertex_normals) || given_normals, fn = d && d->face_normals;
     std::string out = "ply\nformat binary_little_endian 1.0\ncomment written by geofilter\n";
     out += "element vertex " + std::to_string(p.rows()) + "\nproperty double x\nproperty double y\nproperty double z\n";
     if (vn) out += "property float nx\nproperty float ny\nproperty float nz\n";
@@ -461,7 +462,7 @@ std::string ply_text(const Data* d, const Points& p, const Triangles& t, const s
     if (d)
         for (const auto& c : d->face_columns.properties) out += std::string("property ") + ply_type_name(c.type) + " " + c.name + "\n";
     out += "end_header\n";
-    const Points normals = vn ? vertex_normals(p, t) : Points();
+    const Points normals = given_normals ? *given_normals : vn ? vertex_normals(p, t) : Points();
     for (Eigen::Index i = 0; i < p.rows(); ++i) {
         for (int k = 0; k < 3; ++k) put(out, p(i, k));
         if (vn)
@@ -537,10 +538,16 @@ void read_obj(Data& d, const std::string& path, const std::string& bytes) {
     }
 }
 
-std::string obj_text(const Points& p, const Triangles& t) {
+// A cloud's normals as vn lines, one per v line in the same order: with no faces to index
+// them, readers (MeshLab among them) pair them with the vertices by order.
+std::string obj_text(const Points& p, const Triangles& t, const Points* cloud_normals) {
     std::string out = "# written by geofilter\n";
     for (Eigen::Index i = 0; i < p.rows(); ++i)
         out += "v " + full_precision(p(i, 0)) + " " + full_precision(p(i, 1)) + " " + full_precision(p(i, 2)) + "\n";
+    if (cloud_normals && t.rows() == 0)
+        for (Eigen::Index i = 0; i < cloud_normals->rows(); ++i)
+            out += "vn " + full_precision((*cloud_normals)(i, 0)) + " " + full_precision((*cloud_normals)(i, 1)) + " " +
+                   full_precision((*cloud_normals)(i, 2)) + "\n";
     for (Eigen::Index f = 0; f < t.rows(); ++f)
         out += "f " + std::to_string(t(f, 0) + 1) + " " + std::to_string(t(f, 1) + 1) + " " + std::to_string(t(f, 2) + 1) + "\n";
     return out;
@@ -623,10 +630,10 @@ void read_off(Data& d, const std::string& path, const std::string& bytes) {
     store_faces(d, faces, "OFF");
 }
 
-std::string off_text(const Data* d, const Points& p, const Triangles& t) {
+std::string off_text(const Data* d, const Points& p, const Triangles& t, const Points* cloud_normals) {
     const std::string keyword = d ? d->off_keyword : "OFF";
     const bool normals = keyword.find('N') != std::string::npos;
-    const Points n = normals ? vertex_normals(p, t) : Points();
+    const Points n = !normals ? Points() : cloud_normals ? *cloud_normals : vertex_normals(p, t);
     std::string out = keyword + "\n" + std::to_string(p.rows()) + " " + std::to_string(t.rows()) + " 0\n";
     for (Eigen::Index i = 0; i < p.rows(); ++i) {
         out += full_precision(p(i, 0)) + " " + full_precision(p(i, 1)) + " " + full_precision(p(i, 2));
@@ -637,6 +644,44 @@ std::string off_text(const Data* d, const Points& p, const Triangles& t) {
     for (Eigen::Index f = 0; f < t.rows(); ++f)
         out += "3 " + std::to_string(t(f, 0)) + " " + std::to_string(t(f, 1)) + " " + std::to_string(t(f, 2)) +
                (d ? d->face_tail[size_t(f)] : "") + "\n";
+    return out;
+}
+
+// ---------------------------------------------------------------------------------------------
+// XYZ: a point cloud as text, one point a line, "x y z" or "x y z nx ny nz" (the normals are
+// read and not used: the cloud's Laplacian estimates its own, and those are written).
+
+void read_xyz(Data& d, const std::string& path, const std::string& bytes) {
+    std::vector<Eigen::RowVector3d> points;
+    const auto lines = lines_of(bytes, '#');
+    for (size_t l = 0; l < lines.size(); ++l) {
+        if (blank(lines[l])) continue;
+        const std::string where = "cannot read '" + path + "' as XYZ: line " + std::to_string(l + 1);
+        const std::vector<std::string> w = words_of(lines[l]);
+        if (w.size() != 3 && w.size() != 6)
+            throw Error(where + " has " + std::to_string(w.size()) + " numbers: a point is x y z, or x y z nx ny nz");
+        Eigen::RowVector3d x;
+        for (int k = 0; k < 3; ++k) x[k] = off_number(w[size_t(k)], where);
+        for (size_t k = 3; k < w.size(); ++k) off_number(w[k], where);
+        if (w.size() == 6) d.vertex_normals = true;
+        points.push_back(x);
+    }
+    if (points.empty()) throw Error("cannot read '" + path + "' as XYZ: it has no points");
+    d.points.resize(Eigen::Index(points.size()), 3);
+    for (size_t i = 0; i < points.size(); ++i) d.points.row(Eigen::Index(i)) = points[i];
+    d.triangles.resize(0, 3);
+    if (d.vertex_normals) d.notes.push_back("the XYZ file's normals are not used: the cloud's are estimated and written");
+}
+
+std::string xyz_text(const Points& p, const Points* normals) {
+    std::string out;
+    for (Eigen::Index i = 0; i < p.rows(); ++i) {
+        out += full_precision(p(i, 0)) + " " + full_precision(p(i, 1)) + " " + full_precision(p(i, 2));
+        if (normals)
+            out += " " + full_precision((*normals)(i, 0)) + " " + full_precision((*normals)(i, 1)) + " " +
+                   full_precision((*normals)(i, 2));
+        out += "\n";
+    }
     return out;
 }
 
@@ -720,15 +765,25 @@ std::string stl_text(const Points& p, const Triangles& t) {
 
 // `d` is what was read when writing in the format that was read, else null: attributes are
 // carried only within one format.
-void save(const std::string& path, const Data* d, const Points& p, const Triangles& t, const std::vector<int>& selected) {
+void save(const std::string& path, const Data* d, const Points& p, const Triangles& t, const std::vector<int>& selected,
+          const Points* cloud_normals = nullptr) {
     const MeshFormat format = require_format(path);
     if (d && d->format != format) d = nullptr;
+    if (t.rows() > 0) cloud_normals = nullptr;
+    if (cloud_normals && cloud_normals->rows() != p.rows())
+        throw Error("internal: " + std::to_string(cloud_normals->rows()) + " normals for " + std::to_string(p.rows()) + " points");
+    if (format == MeshFormat::Stl && t.rows() == 0)
+        throw Error("cannot write '" + path + "': STL stores triangles only and this is a point cloud; write PLY, OBJ or XYZ");
+    if (format == MeshFormat::Xyz && t.rows() > 0)
+        throw Error("cannot write '" + path + "': XYZ stores points only and would drop the mesh's " +
+                    std::to_string(t.rows()) + " faces; write PLY, OBJ, OFF or STL");
     std::string text;
     switch (format) {
-    case MeshFormat::Ply: text = ply_text(d, p, t, selected); break;
-    case MeshFormat::Obj: text = obj_text(p, t); break;
-    case MeshFormat::Off: text = off_text(d, p, t); break;
+    case MeshFormat::Ply: text = ply_text(d, p, t, selected, cloud_normals); break;
+    case MeshFormat::Obj: text = obj_text(p, t, cloud_normals); break;
+    case MeshFormat::Off: text = off_text(d, p, t, cloud_normals); break;
     case MeshFormat::Stl: text = stl_text(p, t); break;
+    case MeshFormat::Xyz: text = xyz_text(p, cloud_normals); break;
     }
     std::ofstream out(path, std::ios::binary);
     out.write(text.data(), std::streamsize(text.size()));
@@ -747,6 +802,7 @@ std::optional<MeshFormat> format_of(const std::string& path) {
     if (ext == "obj") return MeshFormat::Obj;
     if (ext == "off") return MeshFormat::Off;
     if (ext == "stl") return MeshFormat::Stl;
+    if (ext == "xyz") return MeshFormat::Xyz;
     return std::nullopt;
 }
 
@@ -756,11 +812,14 @@ const char* format_name(MeshFormat format) {
     case MeshFormat::Obj: return "OBJ";
     case MeshFormat::Off: return "OFF";
     case MeshFormat::Stl: return "STL";
+    case MeshFormat::Xyz: return "XYZ";
     }
     return "?";
 }
 
-const char* supported_formats() { return "PLY, OBJ, OFF or STL (.ply, .obj, .off, .stl)"; }
+const char* supported_formats() {
+    return "PLY, OBJ, OFF or STL (.ply, .obj, .off, .stl), or XYZ (.xyz) for a point cloud";
+}
 
 MeshFile::MeshFile(std::unique_ptr<Data> data) : data_(std::move(data)) {}
 MeshFile::MeshFile(MeshFile&&) noexcept = default;
@@ -776,6 +835,7 @@ MeshFile MeshFile::read(const std::string& path) {
     case MeshFormat::Obj: read_obj(*d, path, bytes); break;
     case MeshFormat::Off: read_off(*d, path, bytes); break;
     case MeshFormat::Stl: read_stl(*d, path, bytes); break;
+    case MeshFormat::Xyz: read_xyz(*d, path, bytes); break;
     }
     if (d->has_stored_flags)
         d->notes.push_back("stored face flags: " + std::to_string(d->stored_selection.size()) + " of " +
@@ -791,11 +851,13 @@ const std::vector<int>& MeshFile::stored_selection() const { return data_->store
 const std::vector<double>& MeshFile::vertex_quality() const { return data_->vertex_quality; }
 const std::vector<std::string>& MeshFile::notes() const { return data_->notes; }
 
-void MeshFile::write(const std::string& path, const Points& points, const std::vector<int>& selected_faces) {
+void MeshFile::write(const std::string& path, const Points& points, const std::vector<int>& selected_faces,
+                     const Points* cloud_normals) {
     if (points.rows() != data_->points.rows())
         throw Error("internal: " + std::to_string(points.rows()) + " points for " + std::to_string(data_->points.rows()) +
                     " vertices");
-    save(path, data_.get(), points, data_->triangles, require_format(path) == MeshFormat::Ply ? selected_faces : std::vector<int>());
+    save(path, data_.get(), points, data_->triangles, require_format(path) == MeshFormat::Ply ? selected_faces : std::vector<int>(),
+         cloud_normals);
 }
 
 void write_mesh(const std::string& path, const Mesh& mesh) { save(path, nullptr, mesh.points, mesh.triangles, {}); }

@@ -1,4 +1,5 @@
-// Reading and writing meshes for the command-line tool (PLY, OBJ, OFF, STL) with readers
+// Reading and writing meshes for the command-line tool (PLY, OBJ, OFF, STL; XYZ for point
+// clouds) with readers
 // and writers of its own (mesh_io.cpp says why), so that the tool builds without MeshLab's
 // sources. The rest of the tool sees the core's plain arrays.
 #pragma once
@@ -12,12 +13,13 @@
 
 namespace geofilter::cli {
 
-enum class MeshFormat { Ply, Obj, Off, Stl };
+// A file with vertices and no faces (PLY, OBJ, OFF) is a point cloud, as XYZ always is.
+enum class MeshFormat { Ply, Obj, Off, Stl, Xyz };
 
 // By the file name's extension, case-insensitively; nullopt for anything else.
 std::optional<MeshFormat> format_of(const std::string& path);
 const char* format_name(MeshFormat format);
-const char* supported_formats();  // for messages: "PLY, OBJ, OFF or STL (.ply, .obj, .off, .stl)"
+const char* supported_formats();  // for messages: "PLY, OBJ, OFF, STL or XYZ (.ply, .obj, .off, .stl, .xyz)"
 
 class MeshFile {
 public:
@@ -47,7 +49,11 @@ public:
     // read, it keeps the attributes read with it (PLY: every scalar vertex and face property;
     // OFF: colours and texture coordinates); normals are recomputed. A PLY output
     // stores `selected_faces` as face flags when there are any. Throws Error.
-    void write(const std::string& path, const Points& points, const std::vector<int>& selected_faces);
+    // A point cloud (no faces) is written with `cloud_normals` when given: PLY nx ny nz, OBJ vn
+    // lines, XYZ's last three columns. Refuses a cloud as STL and a mesh as XYZ (the faces
+    // would be lost).
+    void write(const std::string& path, const Points& points, const std::vector<int>& selected_faces,
+               const Points* cloud_normals = nullptr);
 
 private:
     struct Data;

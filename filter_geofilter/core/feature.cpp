@@ -107,4 +107,49 @@ FeatureEllipsoid measure_feature(const Points& points, const Triangles& triangle
     return ellipsoid_in_frame(moments, frame, origin, low, high);
 }
 
+FeatureEllipsoid measure_feature_of_points(const Points& points, const std::vector<int>& selected_points,
+                                           const Eigen::VectorXd& point_area) {
+    if (selected_points.empty())
+        throw Error("no points are selected: select the feature's points (a bump, a nose, an ear) before measuring it,"
+                    " or turn off useSelection and give the radius");
+    if (point_area.size() != points.rows())
+        throw Error("internal: " + std::to_string(point_area.size()) + " point areas for " +
+                    std::to_string(points.rows()) + " points");
+    for (int i : selected_points)
+        if (i < 0 || i >= points.rows())
+            throw Error("selected point index " + std::to_string(i) + " is out of range (the cloud has " +
+                        std::to_string(points.rows()) + " points)");
+    // Moments about a selected point, for the reason selection_moments gives.
+    const Eigen::Vector3d origin = points.row(selected_points.front()).transpose();
+    SelectionMoments moments;
+    for (int i : selected_points) {
+        const Eigen::Vector3d x = points.row(i).transpose() - origin;
+        const double a = point_area[i];
+        if (!std::isfinite(a) || !x.allFinite()) throw Error("selected point " + std::to_string(i) + " is not finite");
+        moments.area += a;
+        moments.first += a * x;
+        moments.second += a * x * x.transpose();
+    }
+    // feature_frame counts selected pieces; here they are points.
+    moments.face_count = static_cast<int>(selected_points.size());
+    if (!(moments.area > 0))
+        throw Error("the selected points stand for zero area: the feature size is undefined; select more points");
+    const FeatureFrame frame = feature_frame(moments);
+    Eigen::Vector3d low = Eigen::Vector3d::Constant(INFINITY), high = Eigen::Vector3d::Constant(-INFINITY);
+    for (int i : selected_points) {
+        const Eigen::Vector3d local = frame.axes.transpose() * ((points.row(i).transpose() - origin) - frame.mean);
+        low = low.cwiseMin(local);
+        high = high.cwiseMax(local);
+    }
+    FeatureEllipsoid e;
+    try {
+        e = ellipsoid_in_frame(moments, frame, origin, low, high);
+    } catch (const Error&) {
+        throw Error("the selected points are degenerate (all on one line): no feature radius; select a patch of points");
+    }
+    e.face_count = 0;
+    e.point_count = static_cast<int>(selected_points.size());
+    return e;
+}
+
 } // namespace geofilter

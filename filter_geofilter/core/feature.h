@@ -4,6 +4,7 @@
 
 #include "types.h"
 
+#include <string>
 #include <vector>
 
 namespace geofilter {
@@ -17,6 +18,13 @@ struct FeatureEllipsoid {
     double radius = 0;             // the feature radius r used for the frequency (see below)
     double area = 0;               // total area of the selection
     int face_count = 0;
+    int point_count = 0;           // a cloud's selected points (measure_feature_of_points); face_count is then 0
+
+    // "12 selected faces" or "40 selected points", for messages.
+    std::string selection_size() const {
+        return point_count > 0 ? std::to_string(point_count) + " selected points"
+                               : std::to_string(face_count) + " selected faces";
+    }
 
     // Sphere-like feature: s = 2 / r^2; cylinder-like feature: s = 1 / r^2 (paper section 6).
     double frequency(FeatureShape shape) const {
@@ -36,6 +44,17 @@ struct FeatureEllipsoid {
 // In between, r moves continuously with the radii (no switch from one pair to the other).
 // Refuses an empty selection, a selection of zero area and out-of-range face indices.
 FeatureEllipsoid measure_feature(const Points& points, const Triangles& triangles, const std::vector<int>& selected_faces);
+
+// measure_feature for a point cloud's selected points (`selected_points`, indices into
+// `points`), each weighted by the area it stands for (`point_area`, the lumped mass M of the
+// cloud's Laplacian). Weighting by area rather than uniformly makes the covariance estimate the
+// same surface integral as measure_feature's, so a feature sampled densely on one side and
+// sparsely on the other is not tilted towards the dense side; the radii follow the same rule
+// (the selected points' bounding box in the principal frame, then feature_radius), so a cloud
+// of a mesh's vertices measures like the mesh's faces over them. Refuses an empty selection,
+// out-of-range indices, a selection of zero area and one whose points lie on a line.
+FeatureEllipsoid measure_feature_of_points(const Points& points, const std::vector<int>& selected_points,
+                                           const Eigen::VectorXd& point_area);
 
 // measure_feature in steps, for a selection split over several parts (geofilter-mpi's ranks):
 // the moments of each part add up, the frame follows from their sum, the extents in that

@@ -127,6 +127,7 @@ struct CoreMesh
 	Points points;
 	Triangles triangles;
 	std::vector<int> selectedFaces;
+	std::vector<int> selectedVertices;   // a point cloud's selection (compact indices)
 	std::vector<CMeshO::VertexPointer> vertex;
 	std::vector<double> quality;   // per-vertex quality when the mesh has it (region = quality)
 };
@@ -138,6 +139,7 @@ inline CoreMesh copyMesh(CMeshO &cm)
 	for (size_t i = 0; i < cm.vert.size(); ++i) {
 		if (cm.vert[i].IsD()) continue;
 		compact[i] = int(out.vertex.size());
+		if (cm.vert[i].IsS()) out.selectedVertices.push_back(compact[i]);
 		out.vertex.push_back(&cm.vert[i]);
 	}
 	out.points.resize(Eigen::Index(out.vertex.size()), 3);
@@ -192,7 +194,8 @@ inline FilterRun runOnMesh(const FilterSpec &spec, CMeshO &cm, const RichParamet
 	const ParameterValues values = readValues(spec, par, !run.mesh.selectedFaces.empty());
 	run.out = run_filter(spec, values,
 	                     RunInput{run.mesh.points, run.mesh.triangles, run.mesh.selectedFaces, progressFor(cb, spec),
-	                              &run.mesh.quality, &cache, {}, exact_pair_factorization()});
+	                              &run.mesh.quality, &cache, {}, exact_pair_factorization(),
+	                              run.mesh.selectedVertices});
 	return run;
 }
 

@@ -67,7 +67,7 @@ class ErrorTest(unittest.TestCase):
             f.write(b"\0" * 80 + b"\xff\xff\x00\x00")  # claims 65535 triangles, holds none
         self.assert_refused("lowpass", truncated, self.output, status=1, mentions="truncated.stl")
         self.assert_refused("lowpass", self.dir, self.output, status=1)
-        self.assert_refused("lowpass", os.path.join(self.dir, "in.xyz"), self.output, status=1, mentions="format")
+        self.assert_refused("lowpass", os.path.join(self.dir, "in.pcd"), self.output, status=1, mentions="format")
 
     def test_output_is_input(self):
         os.symlink("in.ply", os.path.join(self.dir, "link.ply"))
