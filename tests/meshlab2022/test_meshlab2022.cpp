@@ -566,7 +566,7 @@ TEST(Errors, PythonKeywordsAreLowerCaseAndChecked)
 	MeshDocument md;
 	createSphere(md, 1.0, 3);
 	const Snapshot before(md);
-	for (const Kwargs &k : {Kwargs{{"useSelection", false}}, Kwargs{{"G0", 1.0}}, Kwargs{{"radius", 0.5}},
+	for (const Kwargs &k : {Kwargs{{"useSelection", false}}, Kwargs{{"G0", 1.0}}, Kwargs{{"sigma", 0.5}},
 	                        Kwargs{{"solver", "Cholesky"}}, Kwargs{{"solver", 2}}}) {
 		SCOPED_TRACE(k.begin()->first);
 		EXPECT_THROW(applyPython(md, "apply_geofilter_lowpass", k), std::runtime_error);
@@ -710,8 +710,8 @@ TEST(Region, SelectedCapChangesOnlyTheCapAndItsBand)
 // which is what geofilter --radius r runs; within the float write-back, 1e-6 of the diagonal.
 TEST(Sizes, ARadiusAsALengthOrAPercentageIsTheDesignOfItsFrequency)
 {
-	for (const bool percentage : {false, true}) {
-		SCOPED_TRACE(percentage ? "percentage" : "length");
+	for (const bool asPercentage : {false, true}) {
+		SCOPED_TRACE(asPercentage ? "percentage" : "length");
 		MeshDocument md;
 		MeshModel &m = createSphere(md, 1.0, 3);
 		for (auto &v : m.cm.vert) {
@@ -722,7 +722,7 @@ TEST(Sizes, ARadiusAsALengthOrAPercentageIsTheDesignOfItsFrequency)
 		const geofilter::Mesh before = coreCopy(m.cm);
 		const double diagonal = diagonalOf(m.cm), r = 0.15;
 		Kwargs kwargs{{"useselection", false}, {"tolerance", 1e-10}};
-		kwargs["radius"] = percentage ? percentage(100 * r / diagonal) : QVariant(r);
+		kwargs["radius"] = asPercentage ? percentage(100 * r / diagonal) : QVariant(r);
 		const FilterRun run = applyPython(md, "apply_geofilter_lowpass", kwargs);
 		const geofilter::Mesh after = coreCopy(m.cm);
 		geofilter::FilterOptions options;
