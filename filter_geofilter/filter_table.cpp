@@ -1,5 +1,7 @@
 #include "filter_table.h"
 
+#include <set>
+
 namespace geofilter {
 
 namespace {
@@ -212,6 +214,15 @@ FilterSpec denoise() {
             p};
 }
 
+// What only an expert sets: the frequencies of the paper's equations and the solver's knobs.
+void mark_expert_parameters(std::vector<FilterSpec>& table) {
+    const std::set<std::string> expert = {param::s1,    param::s2,     param::cutoff,    param::order,
+                                          param::laplace_operator, param::solver, param::tolerance,
+                                          param::max_iterations};
+    for (auto& f : table)
+        for (auto& p : f.parameters) p.expert = expert.count(p.name) > 0;
+}
+
 std::vector<FilterSpec> make_table() {
     std::vector<FilterSpec> t;
     // Defaults are the paper's figures where those are stable (docs/paper-notes.md §9); the
@@ -250,6 +261,7 @@ std::vector<FilterSpec> make_table() {
                  {}});
     t.push_back(butterworth_lowpass());
     t.push_back(denoise());
+    mark_expert_parameters(t);
     return t;
 }
 

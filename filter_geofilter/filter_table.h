@@ -24,6 +24,9 @@ struct ParameterSpec {
     std::string label;             // short, for dialogs
     std::string help;              // physical meaning, for tooltips and --help
     std::vector<std::string> choices;  // enum labels
+    // The solver's settings and the paper's raw frequencies: MeshLab 2022+ folds these under
+    // its dialog's advanced button; everywhere they come last.
+    bool expert = false;
 };
 
 struct FilterSpec {

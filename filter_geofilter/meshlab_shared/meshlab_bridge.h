@@ -22,12 +22,33 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace geofilter {
 namespace meshlab_bridge {
 
 inline QString qs(const std::string &s) { return QString::fromStdString(s); }
+
+// A length: an absolute value shown with its percentage of a range. MeshLab 2025.07 renamed
+// RichAbsPerc to RichPercentage; both hold the absolute value.
+#if __has_include(<common/parameters/rich_parameter/rich_percentage.h>)
+using RichLength = RichPercentage;
+#else
+using RichLength = RichAbsPerc;
+#endif
+
+// A Rich* parameter of the table's name, label and help. 2022.02+ dialogs fold the ones marked
+// advanced behind a button; 2020.09's constructors have no such flag.
+template <class Rich, class... Value>
+Rich richParameter(const ParameterSpec &p, Value &&...value)
+{
+#if __has_include(<common/plugins/interfaces/filter_plugin.h>)
+	return Rich(qs(p.name), std::forward<Value>(value)..., qs(p.label), qs(p.help), p.expert);
+#else
+	return Rich(qs(p.name), std::forward<Value>(value)..., qs(p.label), qs(p.help));
+#endif
+}
 
 inline bool hasSelectedFaces(const CMeshO &cm)
 {
@@ -55,18 +76,17 @@ inline void addParameters(const FilterSpec &spec, const CMeshO *cm, RichParamete
 	const double diagonal = cm ? diagonalOf(*cm) : 0.0;
 	const ParameterValues defaults = default_values(spec, cm != nullptr && hasSelectedFaces(*cm), diagonal);
 	for (const ParameterSpec &p : spec.parameters) {
-		const QString name = qs(p.name), label = qs(p.label), help = qs(p.help);
 		const double d = defaults.at(p.name);
 		switch (p.type) {
 		// MeshLab's convention for a length: absolute, or a percentage of the diagonal (0 to 100 %).
-		case ParameterType::Length: par.addParam(RichAbsPerc(name, d, 0, diagonal > 0 ? diagonal : 1, label, help)); break;
-		case ParameterType::Float: par.addParam(RichFloat(name, d, label, help)); break;
-		case ParameterType::Bool: par.addParam(RichBool(name, d != 0, label, help)); break;
-		case ParameterType::Int: par.addParam(RichInt(name, int(std::lround(d)), label, help)); break;
+		case ParameterType::Length: par.addParam(richParameter<RichLength>(p, d, 0.0, diagonal > 0 ? diagonal : 1.0)); break;
+		case ParameterType::Float: par.addParam(richParameter<RichFloat>(p, d)); break;
+		case ParameterType::Bool: par.addParam(richParameter<RichBool>(p, d != 0)); break;
+		case ParameterType::Int: par.addParam(richParameter<RichInt>(p, int(std::lround(d)))); break;
 		case ParameterType::Enum: {
 			QStringList choices;
 			for (const std::string &c : p.choices) choices << qs(c);
-			par.addParam(RichEnum(name, int(std::lround(d)), choices, label, help));
+			par.addParam(richParameter<RichEnum>(p, int(std::lround(d)), choices));
 			break;
 		}
 		}
@@ -92,7 +112,7 @@ inline ParameterValues readValues(const FilterSpec &spec, const RichParameterLis
 			break;
 		case ParameterType::Length:   // RichAbsPerc holds the absolute length
 			if (v.isFloat()) values[p.name] = v.getFloat();
-			else expected = "RichAbsPerc";
+			else expected = "RichAbsPerc (RichPercentage)";
 			break;
 		case ParameterType::Bool:
 			if (v.isBool()) values[p.name] = v.getBool() ? 1 : 0;

@@ -137,6 +137,13 @@ bool collectProgress(const int pos, const char *str)
 
 using Values = std::map<std::string, QVariant>;
 
+// MeshLab 2025.07 renamed RichAbsPerc, a length shown with its percentage, to RichPercentage.
+#if __has_include(<common/parameters/rich_parameter/rich_percentage.h>)
+using RichLength = RichPercentage;
+#else
+using RichLength = RichAbsPerc;
+#endif
+
 // pymeshlab.PercentageValue(x) for a length is written "x%" here: x % of the RichAbsPerc's
 // range, as pymeshlab turns a percentage into the absolute value the filter reads.
 QVariant percentage(double x) { return QVariant(QString::number(x, 'g', 17) + "%"); }
@@ -161,8 +168,8 @@ void setValue(RichParameter &p, const QVariant &v, const std::string &name)
 			throw std::runtime_error(name + ": '" + v.toString().toStdString() + "' is none of the enum's values");
 		p.setValue(IntValue(i));
 	}
-	else if (p.isOfType<RichAbsPerc>() && v.type() == QVariant::String && v.toString().endsWith('%')) {
-		const auto &range = dynamic_cast<const RichAbsPerc &>(p);
+	else if (p.isOfType<RichLength>() && v.type() == QVariant::String && v.toString().endsWith('%')) {
+		const auto &range = dynamic_cast<const RichLength &>(p);
 		const double x = v.toString().chopped(1).toDouble();
 		p.setValue(FloatValue(Scalarm(range.min + (range.max - range.min) * x / 100)));
 	}
@@ -407,12 +414,14 @@ TEST(Parameters, MatchTheTableAndUseSelectionFollowsTheSelection)
 			for (const auto &p : s.parameters) {
 				ASSERT_TRUE(rpl.hasParameter(qs(p.name))) << p.name;
 				const Value &v = rpl.getParameterByName(qs(p.name)).value();
+				// The dialog folds the expert's parameters under its advanced button.
+				EXPECT_EQ(rpl.getParameterByName(qs(p.name)).isAdvanced(), p.expert) << p.name;
 				switch (p.type) {
 				case geofilter::ParameterType::Length: {
 					// MeshLab's convention for lengths: absolute or % of the diagonal.
 					const RichParameter &rp = rpl.getParameterByName(qs(p.name));
-					ASSERT_TRUE(rp.isOfType<RichAbsPerc>()) << p.name;
-					const auto &range = dynamic_cast<const RichAbsPerc &>(rp);
+					ASSERT_TRUE(rp.isOfType<RichLength>()) << p.name;
+					const auto &range = dynamic_cast<const RichLength &>(rp);
 					const double diagonal = diagonalOf(m.cm);
 					EXPECT_EQ(range.min, 0) << p.name;
 					EXPECT_NEAR(range.max, diagonal, 1e-6 * diagonal) << p.name;
