@@ -117,13 +117,21 @@ shoot() { # version executable
 
     # The dialog, opened by name through MeshLab's filter search (Ctrl+F): the submenu's
     # entries are sorted with every other plugin's, so their positions vary between installs.
-    xdotool key ctrl+f
-    sleep 1
-    xdotool type --delay 40 "GeoFilter: Lowpass"
-    sleep 1
-    xdotool key Down Return
-    local dialog
-    dialog=$(wait_window "^GeoFilter: Lowpass$") || { echo "screenshots: the GeoFilter dialog did not open in $version" >&2; exit 1; }
+    # The search ranks its matches by their descriptions too, so the exact name need not come
+    # first: take the next match until the dialog that opens is the Lowpass's (the filter dock
+    # shows one filter at a time, so a wrong one is simply replaced).
+    local dialog="" k
+    for k in 1 2 3 4; do
+        xdotool key ctrl+f
+        sleep 1
+        xdotool type --delay 40 "GeoFilter: Lowpass"
+        sleep 1
+        xdotool key $(printf 'Down %.0s' $(seq "$k")) Return
+        sleep 2
+        dialog=$(xdotool search --onlyvisible --name "^GeoFilter: Lowpass$" 2>/dev/null | head -n1 || true)
+        [ -z "$dialog" ] || break
+    done
+    [ -n "$dialog" ] || { echo "screenshots: the GeoFilter dialog did not open in $version" >&2; exit 1; }
     # 2020.09 opens its filter dock over the menu bar: put both where the bunny stays visible.
     xdotool windowmove "$dialog" 522 100
     sleep 1
@@ -132,7 +140,8 @@ shoot() { # version executable
     # Preview: tick the box under the parameters (the dialog's last row above its buttons),
     # then type a larger feature radius as a percentage of the diagonal (8 %); the filter
     # reruns through its cache at each change.
-    local X Y WIDTH HEIGHT SCREEN
+    local X Y WIDTH HEIGHT SCREEN preview_from_bottom radius_field_x radius_field_y
+    dialog_layout "$version"
     eval "$(xdotool getwindowgeometry --shell "$dialog")"
     xdotool mousemove $((X + 16)) $((Y + HEIGHT - preview_from_bottom)) click 1
     sleep 4
@@ -146,9 +155,16 @@ shoot() { # version executable
     echo "screenshots: $out/meshlab-$version-menu.png, $out/meshlab-$version-geofilter.png, $out/meshlab-$version-preview.png"
 }
 
-# Where the dialog's Preview box and feature-radius field are, from its frame's corner: the
-# Preview box sits this far above the frame's bottom, the radius field at this offset.
-preview_from_bottom=82 radius_field_x=387 radius_field_y=183
+# Where the dialog's Preview box and the feature radius's percentage field are, from its
+# frame's corner: the Preview box this far above the frame's bottom (2025.07 puts its PyMeshLab
+# box under it), the field at this offset. Measured on this script's own screenshots.
+dialog_layout() { # version
+    case "$1" in
+        2020.09) preview_from_bottom=82 radius_field_x=387 radius_field_y=183 ;;
+        2022.02) preview_from_bottom=82 radius_field_x=461 radius_field_y=168 ;;
+        *) preview_from_bottom=180 radius_field_x=461 radius_field_y=168 ;;
+    esac
+}
 
 mkdir -p "$out"
 [ "$shoot2020" = 0 ] || shoot 2020.09 "$ml2020"
