@@ -18,6 +18,9 @@ Mesh torus(int rings, int segments, double major_radius, double minor_radius);
 // Flat square [-size/2, size/2]^2 in the z = 0 plane, (n+1)^2 vertices.
 Mesh grid(int n, double size);
 
+// `count` points spread evenly over a sphere of `radius` (the Fibonacci spiral): a cloud.
+Points fibonacci_sphere(int count, double radius);
+
 // Moves each vertex along its radial direction by amplitude * unit noise (seeded, deterministic).
 void perturb_radially(Mesh& mesh, double amplitude, unsigned seed);
 // The mesh's vertices moved along their (area-weighted) normals by Gaussian noise of standard

@@ -17,16 +17,6 @@ using namespace geofilter;
 
 namespace {
 
-Points fibonacci_sphere(int count, double radius) {
-    Points p(count, 3);
-    const double golden_angle = M_PI * (3.0 - std::sqrt(5.0));
-    for (int i = 0; i < count; ++i) {
-        const double z = 1.0 - (2.0 * i + 1.0) / count, ring = std::sqrt(1.0 - z * z);
-        p.row(i) = radius * Eigen::RowVector3d(ring * std::cos(golden_angle * i), ring * std::sin(golden_angle * i), z);
-    }
-    return p;
-}
-
 double mean_radius(const Points& p) { return p.rowwise().norm().mean(); }
 
 const Triangles no_faces(0, 3);

@@ -20,16 +20,6 @@ using namespace geofilter;
 namespace {
 
 // Points spread evenly over the sphere of `radius`: the Fibonacci lattice.
-Points fibonacci_sphere(int count, double radius) {
-    Points p(count, 3);
-    const double golden_angle = M_PI * (3.0 - std::sqrt(5.0));
-    for (int i = 0; i < count; ++i) {
-        const double z = 1.0 - (2.0 * i + 1.0) / count, ring = std::sqrt(1.0 - z * z);
-        p.row(i) = radius * Eigen::RowVector3d(ring * std::cos(golden_angle * i), ring * std::sin(golden_angle * i), z);
-    }
-    return p;
-}
-
 // The lowest `count` eigenvalues of K x = s M x: inverse subspace iteration on a block of
 // `block` vectors (one sparse LDL^T of K + shift M, positive definite since K is positive
 // semi-definite), kept M-orthonormal by a QR in the frame M^1/2 x, then Rayleigh-Ritz. The
