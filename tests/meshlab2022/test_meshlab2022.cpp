@@ -746,6 +746,30 @@ TEST(Sizes, ARadiusAsALengthOrAPercentageIsTheDesignOfItsFrequency)
 	}
 }
 
+// A point cloud layer (vertices, no faces), as pymeshlab loads a scan: the plugin builds the
+// cloud's Laplacian, so the noisy sphere of points is smoothed and its mean radius scales by
+// the designed gain at 2/r^2, as the sphere mesh's does.
+TEST(Cloud, APointCloudLayerIsFilteredByItsOwnLaplacian)
+{
+	geofilter::Mesh cloud;
+	cloud.points = geofilter::fibonacci_sphere(3000, 1.0);
+	cloud.triangles.resize(0, 3);
+	for (Eigen::Index i = 0; i < cloud.points.rows(); ++i) cloud.points.row(i) *= 1 + 0.01 * std::sin(37.0 * i);
+	MeshDocument md;
+	MeshModel &m = addMesh(md, cloud, "cloud");
+	const FilterRun run = applyPython(md, "apply_geofilter_lowpass", {{"radius", 0.3}, {"useselection", false}});
+	const geofilter::Mesh after = coreCopy(m.cm);
+	ASSERT_EQ(after.points.rows(), cloud.points.rows());
+	const Eigen::VectorXd before = cloud.points.rowwise().norm(), radii = after.points.rowwise().norm();
+	auto spread = [](const Eigen::VectorXd &r) { return std::sqrt((r.array() - r.mean()).square().mean()); };
+	EXPECT_LT(spread(radii), 0.3 * spread(before));
+	const double s1 = 2 / (0.3 * 0.3), expected = std::abs(eq15(2.0, s1, 2 * s1, 1, 1.1, 0));
+	EXPECT_NEAR(radii.mean() / before.mean(), expected, 0.01 * expected);
+	bool logged = false;
+	for (const auto &l : run.log) logged = logged || l.find("point cloud: 3000 points") != std::string::npos;
+	EXPECT_TRUE(logged);
+}
+
 TEST(Region, QualityWeightOneIsTheWholeMeshFilterAndZeroChangesNothing)
 {
 	MeshDocument whole, one, zero;
