@@ -1,4 +1,4 @@
-"""GeoFilter Denoise against MeshLab's smoothers, through meshlabserver (issue 10).
+"""GeoFilter Denoise against MeshLab's smoothers, through meshlabserver.
 
 Two tasks, each with ground truth:
   feature-scale   a sphere / torus with large bumps plus a pattern of small ones (2 size ratios,

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The region filter in the MeshLab 2020.09 GUI (issue 11), under Xvfb:
+# The region filter in the MeshLab 2020.09 GUI, under Xvfb:
 #   docs/screenshots/meshlab-2020.09-region.png
 # meshlabserver first runs scripts/mlx/bunny_ear_region.mlx (one ear selected and exaggerated,
 # the rest untouched; the selection saved as face flags) and Measure Selected Feature on the

@@ -1,5 +1,5 @@
 """How much bump-like detail the clean surface itself holds, at the size of the bumps Denoise is
-asked to remove (issue 10, the feature-scale cases of compare_denoise).
+asked to remove (the feature-scale cases of compare_denoise).
 
 Denoise driven by a selected bump removes a pattern of bumps like it. That can only work where
 bumps like the selected one stand out from the surface's own detail. This measures it with the

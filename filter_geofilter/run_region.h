@@ -1,4 +1,4 @@
-// The region parameters (issue 11) turned into a per-vertex weight and the weighted filter:
+// The region parameters turned into a per-vertex weight and the weighted filter:
 // run_filter's part for region != whole mesh, kept apart so that run_filter stays one path.
 #pragma once
 

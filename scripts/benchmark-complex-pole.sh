@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 13's complex-pole experiment: the factored solver as it is (a Cholesky factor of
+# The complex-pole experiment: the factored solver as it is (a Cholesky factor of
 # Kt + |r| I preconditioning CG on each complex pole pair) against an exact solve of each pair
 # by a complex-symmetric LDL^T of Kt - r I (MUMPS: ZMUMPS with AMD or METIS, CMUMPS refined), on the 1M
 # torus and the 1.1M subdivided human scan, for the filters with complex poles. One process

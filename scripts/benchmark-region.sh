@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The region rows of the benchmark (issue 11; a few minutes, not the 20-minute benchmark):
+# The region rows of the benchmark (a few minutes, not the 20-minute benchmark):
 # a region of 1% of a ~1M-vertex mesh against the whole-mesh filter.
 # Writes results/benchmark/region.md. Extra arguments go to geofilter_benchmark
 # (--quick: the small meshes, seconds).

@@ -1,4 +1,4 @@
-// The GeoFilter filters on the command line (issues 5 and 7), for `geofilter` and
+// The GeoFilter filters on the command line, for `geofilter` and
 // `geofilter-mpi`. The filters, their parameters and defaults come from the filter table, the
 // work from run_filter(): this file only wires files, options and messages around them.
 

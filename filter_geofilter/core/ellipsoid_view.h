@@ -1,4 +1,4 @@
-// The measured feature ellipsoid as it is shown (issue 11). The fitted ellipsoid (paper
+// The measured feature ellipsoid as it is shown. The fitted ellipsoid (paper
 // section 6) touches the surface it measures (its box is the selection's) and, for a flat
 // selection, has zero thickness and lies in the surface; drawn in the mesh's grey it cannot
 // be told from the mesh. The shown one is the measured one made a little larger (so it

@@ -1,4 +1,4 @@
-// Filtering one region of a mesh with a smooth fade to the untouched rest (issue 11).
+// Filtering one region of a mesh with a smooth fade to the untouched rest.
 //
 // A weight w in [0, 1] per vertex says how much of the filter's change a vertex takes. The
 // domain D = {w > 0} is filtered as its own domain with every vertex outside D held where it

@@ -1,8 +1,8 @@
-// Solver benchmark (issue 3): the factored solver against the paper's Jacobi-PCG, the
+// Solver benchmark: the factored solver against the paper's Jacobi-PCG, the
 // cheapest implicit filter (one M + hK solve), and vcglib's Taubin smoothing, on meshes
 // of ~10k, ~100k and ~1M vertices normalised to unit bounding-box diagonal, for the paper's
-// presets and the Butterworth lowpass (issue 10); then what a preview rerun costs through a
-// FilterCache (issue 13). Every case runs in a forked child so that its peak memory is its own.
+// presets and the Butterworth lowpass; then what a preview rerun costs through a
+// FilterCache. Every case runs in a forked child so that its peak memory is its own.
 #include "core/butterworth.h"
 #include "core/denoise.h"
 #include "core/filter.h"
@@ -173,7 +173,7 @@ int write_table(const std::string& out_dir, const std::string& file, const std::
     return 0;
 }
 
-// Issue 11: a region of ~1% of the mesh's vertices (the faces inside a ball around one
+// A region of ~1% of the mesh's vertices (the faces inside a ball around one
 // vertex), filtered at its own frequency (s1 = 2/R^2, R the ball's radius) with the default
 // band (blendWidth = auto = R), against the same filter on the whole mesh. The region's time
 // includes computing its weight.
@@ -237,7 +237,7 @@ int region_rows(const std::vector<std::function<NamedMesh()>>& makers, const std
     return write_table(out_dir, "region.md", table.str());
 }
 
-// Denoise with nothing selected on large meshes (issue 10): noise of 0.3 mean edge lengths
+// Denoise with nothing selected on large meshes: noise of 0.3 mean edge lengths
 // along the clean mesh's normals (fixed seed); Denoise as shipped (above
 // denoise_scoring_vertices it scores its candidates on patches), against the same Denoise
 // scoring on the whole mesh (as it did before), the chosen lowpass run once on its own (what
@@ -330,7 +330,7 @@ std::string preview_row(const std::string& name, const Mesh& m) {
     return row.str();
 }
 
-// Where a CG pair solve's time goes (issue 13's profile): one triangular sweep pair with the
+// Where a CG pair solve's time goes : one triangular sweep pair with the
 // factor of Kt + |r| I (the lowpass's preconditioner), CHOLMOD's solve against the core's own
 // sweep, next to the memory bandwidth that bounds it and the product with Kt each iteration
 // also makes. Best of three each.
@@ -385,7 +385,7 @@ int main(int argc, char** argv) {
     std::string out_dir = "benchmark-results", meshes_dir = "meshes";
     double pcg_budget = 60;
     double pcg_full_budget = 900;  // lowpass on meshes below 120k vertices: PCG to convergence
-    // --region: only the issue-11 region rows (a few minutes); --preview: only the preview rows (a minute);
+    // --region: only the region rows (a few minutes); --preview: only the preview rows (a minute);
     // --solve-profile: only where a CG iteration's time goes (two minutes)
     bool quick = false, region_only = false, preview_only = false, solve_profile_only = false, denoise_only = false;
     for (int i = 1; i < argc; ++i) {

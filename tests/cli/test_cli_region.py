@@ -1,4 +1,4 @@
-"""--region and --blend-width (issue 11) through the command-line tool: only the selection and
+"""--region and --blend-width through the command-line tool: only the selection and
 its band move, the rest is written back bit for bit; the PLY vertex quality as a weight."""
 
 import os

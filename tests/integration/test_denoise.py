@@ -1,4 +1,4 @@
-"""The Butterworth Lowpass and Denoise filters by name through meshlabserver (issue 10).
+"""The Butterworth Lowpass and Denoise filters by name through meshlabserver.
 
 A sphere of radius r is the eigenmode s = 2/r^2 of the Laplace-Beltrami operator, so the
 Butterworth lowpass scales it by 1/(1 + (s/sc)^n), written here from the closed form, not from

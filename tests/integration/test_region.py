@@ -1,4 +1,4 @@
-"""(e) Filtering only a region (issue 11) through meshlabserver.
+"""(e) Filtering only a region through meshlabserver.
 
 A cap of an icosphere is selected with Conditional Face Selection and a GeoFilter filter is
 run with region = 1. Checked against an independent numpy reference of the documented math

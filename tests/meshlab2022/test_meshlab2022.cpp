@@ -658,7 +658,7 @@ TEST(Measure, WithoutSelectionIsRefused)
 }
 
 // ---------------------------------------------------------------------------------------
-// Region (issue 11): filter only the selection, with the blend band; the vertex quality as a
+// Region: filter only the selection, with the blend band; the vertex quality as a
 // weight. The math itself is checked against a dense reference in tests/unit/test_region.cpp;
 // here: that the plugin reads region/blendWidth/quality and writes back only inside D.
 

@@ -1,4 +1,4 @@
-// The region filter (issue 11) against an independent dense reference of its documented math:
+// The region filter against an independent dense reference of its documented math:
 // weight w from the edge-path distance to the selected faces (Bellman-Ford here, Dijkstra in
 // the core), the Dirichlet problem on D = {w > 0} solved by a dense generalized eigen
 // decomposition, and p_final = p + w (p' - p).
