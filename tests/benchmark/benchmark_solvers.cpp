@@ -330,7 +330,7 @@ std::string preview_row(const std::string& name, const Mesh& m) {
     return row.str();
 }
 
-// Where a CG pair solve's time goes : one triangular sweep pair with the
+// Where a CG pair solve's time goes: one triangular sweep pair with the
 // factor of Kt + |r| I (the lowpass's preconditioner), CHOLMOD's solve against the core's own
 // sweep, next to the memory bandwidth that bounds it and the product with Kt each iteration
 // also makes. Best of three each.
