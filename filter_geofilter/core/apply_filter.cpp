@@ -237,7 +237,7 @@ void place_coordinates(detail::MeshStage& st, const FilterOptions& options) {
     st.centroids.array().colwise() /= component_area.array();
     st.centred = mesh.points;
     for (Eigen::Index i = 0; i < mesh.points.rows(); ++i) st.centred.row(i) -= st.centroids.row(st.component[i]);
-    st.size = (mesh.points.colwise().maxCoeff() - mesh.points.colwise().minCoeff()).norm();
+    st.size = bounding_box_diagonal(mesh.points);
     split_at_fixed_boundary(st, options);
 }
 

@@ -142,7 +142,7 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
     const double h = mean_edge_length(usable.points, usable.triangles);
     const std::vector<DenoiseDesign> candidates = denoise_sampling_candidates(h, order, op);
     const double step = denoise_probe_step * h;
-    const double size = (points.colwise().maxCoeff() - points.colwise().minCoeff()).norm();
+    const double size = bounding_box_diagonal(points);
 
     SamplingDenoise best;
     best.noise = estimate_noise_direction(usable.points, usable.triangles);

@@ -11,7 +11,7 @@ namespace geofilter {
 NoiseVariance estimate_noise_variance(const Points& points, const Triangles& triangles, const FilterOptions& options) {
     const Eigen::MatrixXd normal = smoothed_vertex_normals(points, triangles);
     const double h = mean_edge_length(points, triangles);
-    const double size = (points.colwise().maxCoeff() - points.colwise().minCoeff()).norm();
+    const double size = bounding_box_diagonal(points);
     std::mt19937_64 random(20261203);
     Eigen::VectorXd sign(points.rows());
     for (Eigen::Index i = 0; i < sign.size(); ++i) sign[i] = (random() >> 63) ? 1.0 : -1.0;

@@ -87,7 +87,7 @@ Eigen::MatrixXd dirichlet_filter(const PreparedMesh& mesh, const std::vector<boo
     for (Eigen::Index i = 0, k = 0; i < n; ++i)
         if (interior[i]) detail_part.row(k++) = centred.row(i) - harmonic.row(i);
 
-    const double size = (mesh.points.colwise().maxCoeff() - mesh.points.colwise().minCoeff()).norm();
+    const double size = bounding_box_diagonal(mesh.points);
     const Laplacian inner = restrict_laplacian(laplacian, interior);
     const detail::FilterProblem problem{inner, detail_part, g, options, size};
     const Eigen::MatrixXd filtered_detail = options.solver == Solver::Factored ? detail::solve_factored(problem, report)
