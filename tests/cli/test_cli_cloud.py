@@ -10,14 +10,7 @@ import unittest
 import numpy as np
 
 import cli_harness as h
-
-
-def fibonacci_sphere(count, radius):
-    i = np.arange(count)
-    z = 1 - (2 * i + 1) / count
-    ring = np.sqrt(1 - z * z)
-    angle = np.pi * (3 - np.sqrt(5)) * i
-    return radius * np.stack([ring * np.cos(angle), ring * np.sin(angle), z], axis=1)
+from shapes import fibonacci_sphere
 
 
 def noisy_sphere_cloud(count=2000, radius=1.0, noise=0.01, seed=4):

@@ -9,14 +9,7 @@ import unittest
 import numpy as np
 
 import geofilter_harness as h
-
-
-def fibonacci_sphere(count, radius):
-    i = np.arange(count)
-    z = 1 - (2 * i + 1) / count
-    ring = np.sqrt(1 - z * z)
-    angle = np.pi * (3 - np.sqrt(5)) * i
-    return radius * np.column_stack([ring * np.cos(angle), ring * np.sin(angle), z])
+from shapes import fibonacci_sphere
 
 
 class CloudLayer(unittest.TestCase):

@@ -5,6 +5,7 @@ import pytest
 
 import cli_harness as h
 import geofilter
+from shapes import fibonacci_sphere
 
 
 def bumpy_icosphere(levels, slide=0.25):
@@ -17,14 +18,6 @@ def bumpy_icosphere(levels, slide=0.25):
     u = v / np.linalg.norm(v, axis=1, keepdims=True)
     bumps = 0.05 * np.sin(3 * u[:, 0]) * np.sin(2 * u[:, 1] + 1) * np.cos(2 * u[:, 2])
     return np.ascontiguousarray(u * (1 + bumps)[:, None]), np.asarray(f, dtype=np.int32)
-
-
-def fibonacci_sphere(count, radius=1.0):
-    i = np.arange(count)
-    z = 1 - (2 * i + 1) / count
-    ring = np.sqrt(1 - z * z)
-    angle = np.pi * (3 - np.sqrt(5)) * i
-    return radius * np.stack([ring * np.cos(angle), ring * np.sin(angle), z], axis=1)
 
 
 def test_lowpass_of_a_meshs_vertices_as_a_cloud_matches_the_meshs():

@@ -12,6 +12,7 @@ import pytest
 import cli_harness as h
 import filter_table
 import geofilter
+from shapes import fibonacci_sphere
 
 
 def noisy_sphere(levels=3, radius=0.5, seed=1):
@@ -160,14 +161,6 @@ def test_denoise_on_a_region_through_the_module_leaves_the_rest_bit_for_bit():
     far = noisy[:, 2] < 0.2  # the cap reaches z = 0.5, the band 0.2 along the surface at most
     assert far.sum() > len(v) // 3
     np.testing.assert_array_equal(out[far], noisy[far])
-
-
-def fibonacci_sphere(count, radius):
-    i = np.arange(count)
-    z = 1 - (2 * i + 1) / count
-    ring = np.sqrt(1 - z * z)
-    angle = np.pi * (3 - np.sqrt(5)) * i
-    return radius * np.column_stack([ring * np.cos(angle), ring * np.sin(angle), z])
 
 
 def test_point_cloud_laplacian_in_numpy_and_the_filters_on_its_triangles():

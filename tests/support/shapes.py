@@ -44,3 +44,12 @@ def bumpy_sphere(levels=5, count=60, rho=0.15, seed=5):
             centres.append(c)
     height = sum(0.24 * rho * np.exp(-np.sum((bare - c) ** 2, axis=1) / rho ** 2) for c in centres)
     return bare, bare * (1 + height)[:, None], faces, centres
+
+
+def fibonacci_sphere(count, radius=1.0):
+    """`count` points spread evenly over a sphere of `radius` (the Fibonacci spiral): a cloud."""
+    i = np.arange(count)
+    z = 1 - (2 * i + 1) / count
+    ring = np.sqrt(1 - z * z)
+    angle = np.pi * (3 - np.sqrt(5)) * i
+    return radius * np.column_stack([ring * np.cos(angle), ring * np.sin(angle), z])
