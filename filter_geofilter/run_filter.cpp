@@ -161,32 +161,29 @@ TransferFunction design_from_values(const FilterSpec& spec, const ParameterValue
             if (!std::isfinite(corners[i]) || corners[i] < 0)
                 throw Error(name + " must be a finite number >= 0 (got " + num(corners[i]) + "); 0 means unused");
         }
+        // A size, measured or given, sets the chosen corner; the others keep their ratios to it.
+        double sized = 0;
+        std::string source;
         if (feature) {
-            const int corner = choice_of(spec, values, param::feature_corner);
-            if (corners[corner] == 0)
-                throw Error("featureCorner names a corner frequency that is not in use (0): give it a value, its ratio to"
-                            " the others is kept");
-            const double measured = feature->frequency(shape), typed = corners[corner];
-            const double scale = measured / typed;
-            for (double& c : corners) c *= scale;
-            log.push_back("corner " + std::string(corner < param::max_pole_zero ? "z" : "p") +
-                          std::to_string(corner % param::max_pole_zero + 1) + " = " + num(measured) + " from " +
-                          feature->selection_size() + " (" + shape_name + "), instead of the typed " +
-                          num(corners[corner]) + "; all corners scaled by " + num(scale));
-            if (s1_used) *s1_used = measured;
+            sized = feature->frequency(shape);
+            source = feature->selection_size() + " (" + shape_name + ")";
         } else if (const double r = value_of(spec, values, param::radius); r != 0) {
             if (!(r > 0) || !std::isfinite(r))
                 throw Error("radius must be a finite length >= 0 (got " + num(r) + "); 0 = the corners as typed");
+            sized = frequency_of_radius(r, shape);
+            source = "the feature radius r = " + num(r) + " (" + shape_name + ")";
+        }
+        if (sized > 0) {
             const int corner = choice_of(spec, values, param::feature_corner);
-            if (corners[corner] == 0)
+            const double typed = corners[corner];
+            if (typed == 0)
                 throw Error("featureCorner names a corner frequency that is not in use (0): give it a value, its ratio to"
                             " the others is kept");
-            const double sized = frequency_of_radius(r, shape), scale = sized / corners[corner];
+            const double scale = sized / typed;
             for (double& c : corners) c *= scale;
             log.push_back("corner " + std::string(corner < param::max_pole_zero ? "z" : "p") +
-                          std::to_string(corner % param::max_pole_zero + 1) + " = " + num(sized) +
-                          " from the feature radius r = " + num(r) + " (" + shape_name + "); all corners scaled by " +
-                          num(scale));
+                          std::to_string(corner % param::max_pole_zero + 1) + " = " + num(sized) + " from " + source +
+                          ", instead of the typed " + num(typed) + "; all corners scaled by " + num(scale));
             if (s1_used) *s1_used = sized;
         }
         for (int i = 0; i < param::max_pole_zero; ++i) {

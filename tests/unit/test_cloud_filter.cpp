@@ -4,6 +4,7 @@
 // the problem with nothing filtered.
 #include "core/point_cloud_laplace.h"
 #include "run_filter.h"
+#include "refusal.h"
 #include "shapes.h"
 
 #include <gtest/gtest.h>
@@ -34,15 +35,6 @@ bool log_has(const RunOutput& out, const std::string& text) {
     for (const auto& line : out.log)
         if (line.find(text) != std::string::npos) return true;
     return false;
-}
-
-std::string refusal(const std::function<void()>& run) {
-    try {
-        run();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "(not refused)";
 }
 
 } // namespace
@@ -119,27 +111,27 @@ TEST(CloudFilter, BadCloudsAreRefusedNamingTheProblem) {
     const Points cloud = fibonacci_sphere(500, 1.0);
     Points doubled(cloud.rows() + 1, 3);
     doubled << cloud, cloud.row(7);
-    EXPECT_NE(refusal([&] { run_on_cloud("lowpass", doubled, {{param::radius, 0.3}}); }).find("duplicate"),
+    EXPECT_NE(refusal_message([&] { run_on_cloud("lowpass", doubled, {{param::radius, 0.3}}); }).find("duplicate"),
               std::string::npos);
-    EXPECT_NE(refusal([&] { run_on_cloud("lowpass", cloud.topRows(20), {{param::radius, 0.3}}); }).find("has 20 points"),
+    EXPECT_NE(refusal_message([&] { run_on_cloud("lowpass", cloud.topRows(20), {{param::radius, 0.3}}); }).find("has 20 points"),
               std::string::npos);
     const FilterSpec& lowpass = *find_filter("lowpass");
     const std::vector<int> faces{0, 1};
-    EXPECT_NE(refusal([&] {
+    EXPECT_NE(refusal_message([&] {
                   run_filter(lowpass, default_values(lowpass, true), RunInput{cloud, no_faces, faces, {}});
               }).find("point cloud (points and no faces), yet 2 faces"),
               std::string::npos);
-    EXPECT_NE(refusal([&] { run_on_cloud("lowpass", cloud, {{param::use_selection, 1}}); }).find("no points of the cloud"),
+    EXPECT_NE(refusal_message([&] { run_on_cloud("lowpass", cloud, {{param::use_selection, 1}}); }).find("no points of the cloud"),
               std::string::npos);
-    EXPECT_NE(refusal([&] { run_on_cloud("lowpass", cloud, {{param::radius, 0.3}, {param::fix_boundary, 1}}); })
+    EXPECT_NE(refusal_message([&] { run_on_cloud("lowpass", cloud, {{param::radius, 0.3}, {param::fix_boundary, 1}}); })
                   .find("fixBoundary"),
               std::string::npos);
-    EXPECT_NE(refusal([&] { run_on_cloud("lowpass", cloud, {{param::radius, 0.3}}, {0, 100000}); }).find("out of range"),
+    EXPECT_NE(refusal_message([&] { run_on_cloud("lowpass", cloud, {{param::radius, 0.3}}, {0, 100000}); }).find("out of range"),
               std::string::npos);
-    EXPECT_NE(refusal([&] { run_on_cloud("lowpass", cloud, {{param::radius, 0.3}, {param::region, 1}}); })
+    EXPECT_NE(refusal_message([&] { run_on_cloud("lowpass", cloud, {{param::radius, 0.3}, {param::region, 1}}); })
                   .find("none are selected"),
               std::string::npos);
-    EXPECT_NE(refusal([&] { run_on_cloud("butterworth", cloud, {{param::radius, 0.3}, {param::laplace_operator, 2}}); })
+    EXPECT_NE(refusal_message([&] { run_on_cloud("butterworth", cloud, {{param::radius, 0.3}, {param::laplace_operator, 2}}); })
                   .find("intrinsic Delaunay"),
               std::string::npos);
 }

@@ -5,6 +5,7 @@
 #include "core/boundary.h"
 #include "core/filter.h"
 #include "core/region.h"
+#include "refusal.h"
 #include "spectral.h"
 
 #include <gtest/gtest.h>
@@ -326,15 +327,6 @@ RunOutput run_with(const std::string& filter, const ParameterValues& changes, co
     return run_filter(spec, v, RunInput{m.points, m.triangles, selected, {}, quality});
 }
 
-std::string refusal(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "";
-}
-
 } // namespace
 
 TEST(RegionRun, EveryFilterHasRegionAndBlendWidth) {
@@ -385,12 +377,12 @@ TEST(RegionRun, QualityWeightOneIsWholeMeshZeroNothingAndBadQualityIsRefusedOrCl
     EXPECT_TRUE(logged);
     std::vector<double> nan = ones;
     nan[7] = std::nan("");
-    EXPECT_NE(refusal([&] { run_with("exaggerate", {{param::region, 2}}, m, {}, &nan); }).find("NaN"), std::string::npos);
-    EXPECT_NE(refusal([&] { run_with("exaggerate", {{param::region, 2}}, m, {}); }).find("no"), std::string::npos);
-    EXPECT_NE(refusal([&] { run_with("exaggerate", {{param::region, 1}, {param::use_selection, 0}}, m, {}); })
+    EXPECT_NE(refusal_message([&] { run_with("exaggerate", {{param::region, 2}}, m, {}, &nan); }).find("NaN"), std::string::npos);
+    EXPECT_NE(refusal_message([&] { run_with("exaggerate", {{param::region, 2}}, m, {}); }).find("no"), std::string::npos);
+    EXPECT_NE(refusal_message([&] { run_with("exaggerate", {{param::region, 1}, {param::use_selection, 0}}, m, {}); })
                   .find("no faces are selected"),
               std::string::npos);
-    EXPECT_NE(refusal([&] { run_with("polezero", {{param::region, 1}, {param::blend_width, -1}}, m, {0, 1}); })
+    EXPECT_NE(refusal_message([&] { run_with("polezero", {{param::region, 1}, {param::blend_width, -1}}, m, {0, 1}); })
                   .find("blendWidth"),
               std::string::npos);
 }
