@@ -7,7 +7,8 @@
 # Needs: xvfb, xdotool, imagemagick (import); the default build (build/meshlab-prefix, from
 # scripts/build.sh), build-2022/ (scripts/test-meshlab2022.sh) and build-2022-sid/
 # (scripts/test-meshlab2022.sh --suite sid: MeshLab 2025.07, float, the GUI's precision);
-# meshes/bunny00.off (scripts/fetch-meshes.sh).
+# meshes/bunny00.off (scripts/fetch-meshes.sh). The tests build MeshLab 2022+ without its
+# GUI: this script adds the GUI to those cached builds (scripts/build-meshlab-source.sh --gui).
 #
 #   screenshots.sh [WHICH...]   WHICH: 2020.09, build-2022, build-2022-sid (default: all three),
 #                               to redo some pictures and leave the others as they are
@@ -37,6 +38,8 @@ for b in "${builds2022[@]}"; do
     dir=$top/${b%%:*}
     [ -f "$dir/CMakeCache.txt" ] ||
         { echo "screenshots: ${b%%:*}/ missing: run scripts/test-meshlab2022.sh ${b#*:}" >&2; exit 1; }
+    # shellcheck disable=SC2086  # the suite arguments, split on purpose
+    "$top/scripts/build-meshlab-source.sh" --gui ${b#*:} >/dev/null
 done
 
 # shellcheck source=experiments/screenshot-display.sh

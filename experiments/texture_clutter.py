@@ -13,7 +13,7 @@ two distributions overlap, no rule on that coefficient tells a bump from the sur
 Cases: the five scans with the bump texture of compare_denoise (bumps 4 mean edge lengths wide),
 or with finer textures (--radii, in mean edge lengths), and compare_denoise's first procedural
 case (a sphere with large bumps and 150 small ones) for contrast. No MeshLab needed.
-    experiments/run texture_clutter [--radii 4] [--samples 2000]
+    experiments/run texture_clutter [--radii 4,2,1.5] [--samples 2000]
 """
 import argparse
 import time
@@ -22,6 +22,7 @@ import numpy as np
 
 from compare_denoise import NOISE_MESHES, feature_cases, scan_texture_case
 from geofilter_experiments import common as c
+from geofilter_experiments import pages
 
 WINDOW_IN_RADII = 2.5  # the Gaussian falls to exp(-6.25) there: the window holds all of a bump
 
@@ -71,7 +72,7 @@ def bump_coefficients(points, faces, at, radius, height):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--samples", type=int, default=2000, help="random vertices of each truth")
-    ap.add_argument("--radii", default="4", help="bump radii of the scans' textures, in mean edge lengths (4: the comparison's)")
+    ap.add_argument("--radii", default="4,2,1.5", help="bump radii of the scans' textures, in mean edge lengths (4: the comparison's)")
     args = ap.parse_args()
     t0 = time.perf_counter()
     name, truth, bumpy, faces, radius, centre = feature_cases()[0]
@@ -84,9 +85,9 @@ def main():
             name, truth, bumpy, faces, radius, small = scan_texture_case(mesh, radius_in_edges)
             cases.append((f"{name} ({radius_in_edges:g} h)", truth, bumpy, faces, radius, small, 0.25 * radius))
     rng = np.random.default_rng(20261204)
-    print("| case | truth: bump coefficient, 5/25/50/75/95 % | at the bumps: 5/25/50/75/95 % "
-          "| truth vertices above the bumps' median |")
-    print("|---|---|---|---:|")
+    table = ["| case | truth: bump coefficient, 5/25/50/75/95 % | at the bumps: 5/25/50/75/95 % "
+             "| truth vertices above the bumps' median |", "|---|---|---|---:|"]
+    print("\n".join(table))
     for name, truth, bumpy, faces, radius, centres, height in cases:
         used = np.unique(faces)
         sample = rng.choice(used, size=min(args.samples, len(used)), replace=False)
@@ -94,8 +95,22 @@ def main():
         on_bumps = bump_coefficients(bumpy, faces, centres, radius, height)
         pct = lambda values: " / ".join(f"{q:+.2f}" for q in np.percentile(values, [5, 25, 50, 75, 95]))
         above = 100 * np.mean(on_truth >= np.median(on_bumps))
-        print(f"| {name} | {pct(on_truth)} | {pct(on_bumps)} | {above:.1f} % |", flush=True)
-    print(f"\n{time.perf_counter() - t0:.0f} s")
+        table.append(f"| {name} | {pct(on_truth)} | {pct(on_bumps)} | {above:.1f} % |")
+        print(table[-1], flush=True)
+    total = time.perf_counter() - t0
+    print(f"\n{total:.0f} s")
+    if pages.partial_run(ap, args):
+        print("a partial run: docs/results/texture-clutter.md left as it was")
+        return
+    pages.write_page("texture-clutter", "\n".join([
+        "# Can a bump be told from the surface's own detail?", "",
+        "At a vertex, a quadric in the tangent plane (what a bump stands on) plus a Gaussian of the bumps' known"
+        " radius, centred there, fitted by least squares over the vertices within 2.5 bump radii; cell values are"
+        " the Gaussian's coefficient in bump heights, at random vertices of the truth (no bumps: what the surface"
+        " itself looks like to such a detector) and at the bumps' centres on the bumpy mesh (what a bump looks"
+        " like). Quantiles 5/25/50/75/95 %; last column, the share of the truth's vertices that score at least"
+        " the median bump. The cases are the feature-scale cases of `experiments/run compare_denoise`.", "",
+        *table, "", f"Total run {total:.0f} s."]))
 
 
 if __name__ == "__main__":

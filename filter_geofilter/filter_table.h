@@ -3,7 +3,7 @@
 // so a name or a default is changed here and nowhere else.
 #pragma once
 
-#include "core/transfer_function.h"
+#include "core/design/transfer_function.h"
 
 #include <string>
 #include <vector>

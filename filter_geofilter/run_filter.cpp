@@ -1,13 +1,13 @@
 #include "run_filter.h"
 
-#include "core/bump_pattern.h"
+#include "core/denoise/bump_pattern.h"
 #include "run_region.h"
-#include "core/ellipsoid_view.h"
-#include "core/icosphere.h"
+#include "core/feature/ellipsoid_view.h"
+#include "core/feature/icosphere.h"
 
-#include "core/denoise.h"
-#include "core/mesh_prep.h"
-#include "core/surface_measures.h"
+#include "core/denoise/denoise.h"
+#include "core/mesh/mesh_prep.h"
+#include "core/mesh/surface_measures.h"
 
 #include <algorithm>
 #include <cmath>
@@ -17,15 +17,13 @@ namespace geofilter {
 
 namespace {
 
-std::string num(double v) { return format_number(v); }
-
 double value_of(const FilterSpec& spec, const ParameterValues& values, const std::string& name) {
     auto it = values.find(name);
     if (it != values.end()) return it->second;
     const ParameterSpec* p = spec.parameter(name);
     if (!p) throw Error("internal: filter " + spec.name + " has no parameter " + name);
     if (p->type == ParameterType::Length)
-        throw Error(name + " has no value: its default is " + num(100 * p->default_value) +
+        throw Error(name + " has no value: its default is " + format_number(100 * p->default_value) +
                     " % of the mesh's bounding-box diagonal, and there is no mesh here; give it");
     return p->default_value;
 }
@@ -39,7 +37,7 @@ double frequency_of_radius(double radius, FeatureShape shape) {
 double typed_radius(const FilterSpec& spec, const ParameterValues& values) {
     const double r = value_of(spec, values, param::radius);
     if (!(r > 0) || !std::isfinite(r))
-        throw Error("radius must be a finite length > 0 (got " + num(r) + "): the size of the features to filter");
+        throw Error("radius must be a finite length > 0 (got " + format_number(r) + "): the size of the features to filter");
     return r;
 }
 
@@ -48,7 +46,7 @@ int choice_of(const FilterSpec& spec, const ParameterValues& values, const std::
     const double v = value_of(spec, values, name);
     const auto count = static_cast<double>(spec.parameter(name)->choices.size());
     if (!(v >= 0 && v < count && v == std::floor(v)))
-        throw Error(name + " must be an index from 0 to " + num(count - 1) + " (got " + num(v) + ")");
+        throw Error(name + " must be an index from 0 to " + format_number(count - 1) + " (got " + format_number(v) + ")");
     return static_cast<int>(v);
 }
 
@@ -70,7 +68,7 @@ std::string describe_feature(const FeatureEllipsoid& e) {
 int order_of(const FilterSpec& spec, const ParameterValues& values) {
     const double v = value_of(spec, values, param::order);
     if (!(v >= 1 && v <= butterworth_max_order && v == std::floor(v)))
-        throw Error("order must be an integer from 1 to " + std::to_string(butterworth_max_order) + " (got " + num(v) + ")");
+        throw Error("order must be an integer from 1 to " + std::to_string(butterworth_max_order) + " (got " + format_number(v) + ")");
     return static_cast<int>(v);
 }
 
@@ -114,38 +112,38 @@ TransferFunction design_from_values(const FilterSpec& spec, const ParameterValue
                           value_of(spec, values, param::G0), value_of(spec, values, param::G1),
                           value_of(spec, values, param::Ginf)};
         if (!(s.s1 >= 0) || !(s.s2 >= 0) || !std::isfinite(s.s1) || !std::isfinite(s.s2))
-            throw Error("s1 and s2 must be finite frequencies >= 0 (got s1 = " + num(s.s1) + ", s2 = " + num(s.s2) +
+            throw Error("s1 and s2 must be finite frequencies >= 0 (got s1 = " + format_number(s.s1) + ", s2 = " + format_number(s.s2) +
                         "); 0 = from the feature radius");
         if (s.s1 == 0 && s.s2 > 0)
-            throw Error("s2 = " + num(s.s2) + " is typed but s1 is 0: type s1 too (the frequencies are then used as"
+            throw Error("s2 = " + format_number(s.s2) + " is typed but s1 is 0: type s1 too (the frequencies are then used as"
                         " typed), or leave s2 at 0 to design from the feature radius");
         // A size gives s1; the curve keeps its shape: the typed ratio s2/s1, or the preset's.
         const bool typed_ratio = s.s1 > 0 && s.s2 > 0;
         const double ratio = typed_ratio ? s.s2 / s.s1 : spec.reference.s2 / spec.reference.s1;
         const std::string ratio_note = " keeps " + std::string(typed_ratio ? "the typed" : "this filter's") +
-                                       " ratio s2/s1 = " + num(ratio);
+                                       " ratio s2/s1 = " + format_number(ratio);
         if (feature) {
             const double measured = feature->frequency(shape);
-            log.push_back("s1 = " + num(measured) + " from " + feature->selection_size() + " (" +
-                          shape_name + ", r = " + num(feature->radius) + ")" +
-                          (s.s1 > 0 ? ", instead of the typed " + num(s.s1) : std::string()) + "; s2 = " +
-                          num(measured * ratio) + ratio_note +
+            log.push_back("s1 = " + format_number(measured) + " from " + feature->selection_size() + " (" +
+                          shape_name + ", r = " + format_number(feature->radius) + ")" +
+                          (s.s1 > 0 ? ", instead of the typed " + format_number(s.s1) : std::string()) + "; s2 = " +
+                          format_number(measured * ratio) + ratio_note +
                           " (turn useSelection off to use the radius or the typed frequencies)");
             s.s1 = measured;
             s.s2 = measured * ratio;
         } else if (s.s1 > 0) {
             if (s.s2 == 0) s.s2 = s.s1 * ratio;
-            log.push_back("s1 = " + num(s.s1) + ", s2 = " + num(s.s2) + (typed_ratio ? " as typed" : " (s1 as typed; s2" + ratio_note + ")") +
+            log.push_back("s1 = " + format_number(s.s1) + ", s2 = " + format_number(s.s2) + (typed_ratio ? " as typed" : " (s1 as typed; s2" + ratio_note + ")") +
                           "; the feature radius is not used");
         } else {
             const double r = typed_radius(spec, values);
             s.s1 = frequency_of_radius(r, shape);
             s.s2 = s.s1 * ratio;
-            log.push_back("s1 = " + num(s.s1) + " from the feature radius r = " + num(r) + " (" + shape_name + "); s2 = " +
-                          num(s.s2) + ratio_note);
+            log.push_back("s1 = " + format_number(s.s1) + " from the feature radius r = " + format_number(r) + " (" + shape_name + "); s2 = " +
+                          format_number(s.s2) + ratio_note);
         }
-        log.push_back("design: s1 = " + num(s.s1) + ", s2 = " + num(s.s2) + ", G0 = " + num(s.G0) + ", G1 = " + num(s.G1) +
-                      ", Ginf = " + num(s.Ginf));
+        log.push_back("design: s1 = " + format_number(s.s1) + ", s2 = " + format_number(s.s2) + ", G0 = " + format_number(s.G0) + ", G1 = " + format_number(s.G1) +
+                      ", Ginf = " + format_number(s.Ginf));
         if (s1_used) *s1_used = s.s1;
         if (s2_used) *s2_used = s.s2;
         return design_second_order(s);
@@ -159,7 +157,7 @@ TransferFunction design_from_values(const FilterSpec& spec, const ParameterValue
         for (size_t i = 0; i < corners.size(); ++i) {
             const std::string name = (i < param::max_pole_zero ? "z" : "p") + std::to_string(i % param::max_pole_zero + 1);
             if (!std::isfinite(corners[i]) || corners[i] < 0)
-                throw Error(name + " must be a finite number >= 0 (got " + num(corners[i]) + "); 0 means unused");
+                throw Error(name + " must be a finite number >= 0 (got " + format_number(corners[i]) + "); 0 means unused");
         }
         // A size, measured or given, sets the chosen corner; the others keep their ratios to it.
         double sized = 0;
@@ -169,9 +167,9 @@ TransferFunction design_from_values(const FilterSpec& spec, const ParameterValue
             source = feature->selection_size() + " (" + shape_name + ")";
         } else if (const double r = value_of(spec, values, param::radius); r != 0) {
             if (!(r > 0) || !std::isfinite(r))
-                throw Error("radius must be a finite length >= 0 (got " + num(r) + "); 0 = the corners as typed");
+                throw Error("radius must be a finite length >= 0 (got " + format_number(r) + "); 0 = the corners as typed");
             sized = frequency_of_radius(r, shape);
-            source = "the feature radius r = " + num(r) + " (" + shape_name + ")";
+            source = "the feature radius r = " + format_number(r) + " (" + shape_name + ")";
         }
         if (sized > 0) {
             const int corner = choice_of(spec, values, param::feature_corner);
@@ -182,8 +180,8 @@ TransferFunction design_from_values(const FilterSpec& spec, const ParameterValue
             const double scale = sized / typed;
             for (double& c : corners) c *= scale;
             log.push_back("corner " + std::string(corner < param::max_pole_zero ? "z" : "p") +
-                          std::to_string(corner % param::max_pole_zero + 1) + " = " + num(sized) + " from " + source +
-                          ", instead of the typed " + num(typed) + "; all corners scaled by " + num(scale));
+                          std::to_string(corner % param::max_pole_zero + 1) + " = " + format_number(sized) + " from " + source +
+                          ", instead of the typed " + format_number(typed) + "; all corners scaled by " + format_number(scale));
             if (s1_used) *s1_used = sized;
         }
         for (int i = 0; i < param::max_pole_zero; ++i) {
@@ -200,22 +198,22 @@ TransferFunction design_from_values(const FilterSpec& spec, const ParameterValue
         double cutoff = value_of(spec, values, param::cutoff);
         const Operator op = *operator_from_values(spec, values, feature != nullptr);
         if (!(cutoff >= 0) || !std::isfinite(cutoff))
-            throw Error("cutoff must be a finite frequency >= 0 (got " + num(cutoff) + "); 0 = from the feature radius");
+            throw Error("cutoff must be a finite frequency >= 0 (got " + format_number(cutoff) + "); 0 = from the feature radius");
         if (feature) {
             cutoff = feature->frequency(shape);
-            log.push_back("cutoff sc = " + num(cutoff) + " from the selection (" + shape_name + ", r = " +
-                          num(feature->radius) + ")");
+            log.push_back("cutoff sc = " + format_number(cutoff) + " from the selection (" + shape_name + ", r = " +
+                          format_number(feature->radius) + ")");
         } else if (cutoff > 0) {
-            log.push_back("cutoff sc = " + num(cutoff) + " as typed; the feature radius is not used");
+            log.push_back("cutoff sc = " + format_number(cutoff) + " as typed; the feature radius is not used");
         } else {
             const double r = typed_radius(spec, values);
             cutoff = frequency_of_radius(r, shape);
-            log.push_back("cutoff sc = " + num(cutoff) + " from the feature radius r = " + num(r) + " (" + shape_name + ")");
+            log.push_back("cutoff sc = " + format_number(cutoff) + " from the feature radius r = " + format_number(r) + " (" + shape_name + ")");
         }
         TransferFunction g = design_butterworth_lowpass(cutoff, order);
-        log.push_back("design: Butterworth lowpass of order " + std::to_string(order) + ", cutoff sc = " + num(cutoff) +
+        log.push_back("design: Butterworth lowpass of order " + std::to_string(order) + ", cutoff sc = " + format_number(cutoff) +
                       (op == Operator::Umbrella ? " (per-vertex frequency)" : " (features of radius " +
-                                                                                   num(std::sqrt(2 / cutoff)) +
+                                                                                   format_number(std::sqrt(2 / cutoff)) +
                                                                                    " halved, sphere-like)") +
                       ", operator " + operator_name(op));
         if (s1_used) *s1_used = cutoff;
@@ -228,8 +226,8 @@ TransferFunction design_from_values(const FilterSpec& spec, const ParameterValue
                         " no design before the mesh is seen; select one bump (or give a radius) to design it alone");
         const Operator op = *operator_from_values(spec, values, true);
         const DenoiseDesign d = design_denoise_from_bump(*feature, shape, order, op);
-        log.push_back("cutoff sc = " + num(d.cutoff) + " from " + d.origin);
-        log.push_back("design: Butterworth lowpass of order " + std::to_string(order) + ", cutoff sc = " + num(d.cutoff) +
+        log.push_back("cutoff sc = " + format_number(d.cutoff) + " from " + d.origin);
+        log.push_back("design: Butterworth lowpass of order " + std::to_string(order) + ", cutoff sc = " + format_number(d.cutoff) +
                       ", operator " + operator_name(op));
         if (s1_used) *s1_used = d.cutoff;
         return d.g;
@@ -242,7 +240,7 @@ FilterOptions filter_options(const FilterSpec& spec, const ParameterValues& valu
     options.solver = choice_of(spec, values, param::solver) == 1 ? Solver::JacobiPcg : Solver::Factored;
     options.tolerance = value_of(spec, values, param::tolerance);
     const double cap = value_of(spec, values, param::max_iterations);
-    if (!(cap >= 1 && cap <= 1e9)) throw Error("maxIterations must be between 1 and 1e9 (got " + num(cap) + ")");
+    if (!(cap >= 1 && cap <= 1e9)) throw Error("maxIterations must be between 1 and 1e9 (got " + format_number(cap) + ")");
     options.max_iterations = static_cast<int>(cap);
     options.fix_boundary = value_of(spec, values, param::fix_boundary) != 0;
     return options;
@@ -256,8 +254,8 @@ void log_response(const FilterSpec& spec, const ParameterValues& values, RunOutp
     const double g1 = spec.kind == FilterKind::SecondOrder ? value_of(spec, values, param::G1) : 0.0;
     const double s_ref = out.s1_used > 0 ? out.s1_used : 1.0;
     const ResponseReport response = analyse_response(out.transfer, g1, s_ref * 1e-4, s_ref * 1e4);
-    out.log.push_back("peak |G| = " + num(response.peak_gain) + " at s = " + num(response.peak_frequency) +
-                      "; G(0) = " + num(out.transfer(0)) + ", G(inf) = " + num(out.transfer.at_infinity()));
+    out.log.push_back("peak |G| = " + format_number(response.peak_gain) + " at s = " + format_number(response.peak_frequency) +
+                      "; G(0) = " + format_number(out.transfer(0)) + ", G(inf) = " + format_number(out.transfer.at_infinity()));
     for (const auto& w : response.warnings) out.log.push_back("warning: " + w);
 }
 
@@ -297,10 +295,10 @@ void log_filter_report(RunOutput& out, const FilterOptions& options) {
     const FilterReport& r = out.report;
     out.log.push_back("solver " + solver_used(r) + ": " + std::to_string(r.active_vertices) + " vertices in " +
                       std::to_string(r.components) + " component(s), " + std::to_string(r.iterations) +
-                      " CG iterations, accurate to " + num(options.tolerance) +
-                      " of the bounding-box diagonal (error bound), relative residual " + num(r.relative_residual) +
-                      "; time " + num(r.seconds_total) + " s (assembly " + num(r.seconds_assembly) + ", factorisation " +
-                      num(r.seconds_factorization) + ", solve " + num(r.seconds_solve) + ")");
+                      " CG iterations, accurate to " + format_number(options.tolerance) +
+                      " of the bounding-box diagonal (error bound), relative residual " + format_number(r.relative_residual) +
+                      "; time " + format_number(r.seconds_total) + " s (assembly " + format_number(r.seconds_assembly) + ", factorisation " +
+                      format_number(r.seconds_factorization) + ", solve " + format_number(r.seconds_solve) + ")");
     if (!r.reused.empty()) out.log.push_back("reused from the previous run on this mesh: " + r.reused);
 }
 
@@ -353,8 +351,8 @@ RunOutput filter_surface(const FilterSpec& spec, const ParameterValues& given, c
         out.feature = feature;
         out.log.push_back("feature: " + describe_feature(*feature));
         const FeatureEllipsoid& e = *out.feature;
-        out.log.push_back("feature frequency: sphere-like s = 2/r^2 = " + num(e.frequency(FeatureShape::Sphere)) +
-                          ", cylinder-like s = 1/r^2 = " + num(e.frequency(FeatureShape::Cylinder)));
+        out.log.push_back("feature frequency: sphere-like s = 2/r^2 = " + format_number(e.frequency(FeatureShape::Sphere)) +
+                          ", cylinder-like s = 1/r^2 = " + format_number(e.frequency(FeatureShape::Cylinder)));
         // Shown a little off the surface and never flat, in colour (the adapters).
         const FeatureEllipsoid shown = shown_ellipsoid(e);
         out.ellipsoid_mesh = ellipsoid_mesh(shown);
@@ -364,8 +362,8 @@ RunOutput filter_surface(const FilterSpec& spec, const ParameterValues& given, c
             axes << (k ? "; " : "") << "(" << e.axes(0, k) << ", " << e.axes(1, k) << ", " << e.axes(2, k) << ") radius "
                  << e.radii[k];
         out.log.push_back("ellipsoid axes (unit directions, measured radii): " + axes.str() +
-                          "; the layer draws radii " + num(shown.radii[0]) + ", " + num(shown.radii[1]) + ", " +
-                          num(shown.radii[2]) + " (2% larger, at least 5% of the largest) to stand off the surface");
+                          "; the layer draws radii " + format_number(shown.radii[0]) + ", " + format_number(shown.radii[1]) + ", " +
+                          format_number(shown.radii[2]) + " (2% larger, at least 5% of the largest) to stand off the surface");
         return out;
     }
 
@@ -392,8 +390,8 @@ RunOutput filter_surface(const FilterSpec& spec, const ParameterValues& given, c
             const double share = selected_area_share(input.points, input.triangles, input.selected_faces);
             if (share >= denoise_largest_bump_share) {
                 out.log.push_back("feature: " + describe_feature(*feature));
-                sampling_why = "the selection covers " + num(100 * share) + " % of the mesh's area, " +
-                               num(100 * denoise_largest_bump_share) +
+                sampling_why = "the selection covers " + format_number(100 * share) + " % of the mesh's area, " +
+                               format_number(100 * denoise_largest_bump_share) +
                                " % or more: that is no bump of a pattern (a lowpass cut at twice its radius would"
                                " reshape the whole mesh), so per-vertex sampling noise is removed instead";
                 feature.reset();
@@ -406,7 +404,7 @@ RunOutput filter_surface(const FilterSpec& spec, const ParameterValues& given, c
         denoise_weight = region_weight_from_values(region, value_of(spec, values, param::blend_width), input, [&] {
             const PreparedMesh usable = prepare_mesh(input.points, input.triangles);  // refuses bad indices first
             const double h = mean_edge_length(usable.points, usable.triangles);
-            return std::make_pair(denoise_blend_edges * h, num(denoise_blend_edges) + " mean edge lengths of " + num(h) +
+            return std::make_pair(denoise_blend_edges * h, format_number(denoise_blend_edges) + " mean edge lengths of " + format_number(h) +
                                                                " (Denoise has no feature radius)");
         }, out.log);
     }
@@ -424,12 +422,12 @@ RunOutput filter_surface(const FilterSpec& spec, const ParameterValues& given, c
         out.s1_used = d.cutoff;
         out.log.push_back(std::string("noise model: ") + noise_model_name(sampled->noise.model) +
                           " (tangential / normal part of the umbrella offsets where the mesh is most regular: " +
-                          num(sampled->noise.tangential_ratio) + "; 2 and up: in every direction)");
+                          format_number(sampled->noise.tangential_ratio) + "; 2 and up: in every direction)");
         const auto scored = std::count_if(sampled->scores.begin(), sampled->scores.end(),
                                           [](const auto& candidate) { return candidate.second.has_value(); });
         const double sigma = std::sqrt(sampled->variance.along_normals);
-        out.log.push_back("noise along the normals: standard deviation " + num(sigma) + " = " +
-                          num(sigma / mean_edge_length(input.points, input.triangles)) +
+        out.log.push_back("noise along the normals: standard deviation " + format_number(sigma) + " = " +
+                          format_number(sigma / mean_edge_length(input.points, input.triangles)) +
                           " mean edge lengths (from what the umbrella lowpass at frequency 1 removes along them)");
         out.log.push_back(std::string("risk estimate ") + (sampling_why.empty() ? "(nothing selected)" : "(on the whole mesh)") +
                           ": " + std::to_string(scored) + " of " +
@@ -445,13 +443,13 @@ RunOutput filter_surface(const FilterSpec& spec, const ParameterValues& given, c
                           "degrees of freedom / noisy numbers):");
         for (const auto& [candidate, score] : sampled->scores)
             out.log.push_back("  " + candidate.origin + ": " +
-                              (score ? num(1e6 * score->risk) + " (" + num(1e6 * score->residual) + ", " +
-                                           num(score->degrees_of_freedom / score->observations) + ")"
+                              (score ? format_number(1e6 * score->risk) + " (" + format_number(1e6 * score->residual) + ", " +
+                                           format_number(score->degrees_of_freedom / score->observations) + ")"
                                      : std::string("not scored (beyond a higher score)")) +
                               (candidate.origin == d.origin ? "  <- chosen" : ""));
-        out.log.push_back("cutoff sc = " + num(d.cutoff) + " from the sampling: " + d.origin);
+        out.log.push_back("cutoff sc = " + format_number(d.cutoff) + " from the sampling: " + d.origin);
         out.log.push_back("design: Butterworth lowpass of order " + std::to_string(order) + ", cutoff sc = " +
-                          num(d.cutoff) + ", operator " + operator_name(d.op));
+                          format_number(d.cutoff) + ", operator " + operator_name(d.op));
         log_response(spec, values, out);
     } else {
         if (cloud) cloud_operator(spec, values, feature.has_value());  // refuses intrinsic Delaunay
@@ -465,17 +463,17 @@ RunOutput filter_surface(const FilterSpec& spec, const ParameterValues& given, c
             out.log.push_back("motion along the normals only (the noise looks along them): " +
                               std::to_string(m->vertices_projected) + " vertices kept the lowpass's motion across the surface and not its sideways drift; " +
                               std::to_string(m->vertices_kept_smoothed) + " kept the lowpass's position (a face turned by more than " +
-                              num(normal_motion_max_turn_degrees) + " degrees otherwise, or no normal)");
+                              format_number(normal_motion_max_turn_degrees) + " degrees otherwise, or no normal)");
         if (const auto& b = sampled->motion_bound)
-            out.log.push_back("motion held within " + num(denoise_motion_bound_sigmas) +
-                              " standard deviations of the noise (" + num(b->bound) + "): " +
+            out.log.push_back("motion held within " + format_number(denoise_motion_bound_sigmas) +
+                              " standard deviations of the noise (" + format_number(b->bound) + "): " +
                               std::to_string(b->vertices_held) + " vertices would have moved farther");
         const VolumeRestoreReport& v = sampled->volume;
         out.log.push_back(v.closed_components == 0
                               ? std::string("no closed component: the volume was left as the lowpass made it")
                               : "volume kept: " + std::to_string(v.closed_components) +
-                                    " closed component(s) moved along their normals by at most " + num(v.largest_offset) +
-                                    " (the lowpass had changed the volume by up to " + num(100 * v.largest_change) + " %)");
+                                    " closed component(s) moved along their normals by at most " + format_number(v.largest_offset) +
+                                    " (the lowpass had changed the volume by up to " + format_number(100 * v.largest_change) + " %)");
         if (denoise_weight) {
             // The region takes the denoised points by its weight, as the other filters' regions
             // take their filtered points: outside it every vertex stays bit for bit.
@@ -493,26 +491,26 @@ RunOutput filter_surface(const FilterSpec& spec, const ParameterValues& given, c
                                                                    input.selected_faces, out.feature->radius,
                                                                    out.transfer, options);
             const BumpPatternReport& pattern = bump.pattern;
-            const std::string fit = "Gaussian profile of width " + num(pattern.width) + " (the selection's radius " +
-                                    num(out.feature->radius) + "), selected bump " + num(pattern.selected_height) +
-                                    " high, " + num(100 * pattern.unexplained) + " % of it unexplained";
+            const std::string fit = "Gaussian profile of width " + format_number(pattern.width) + " (the selection's radius " +
+                                    format_number(out.feature->radius) + "), selected bump " + format_number(pattern.selected_height) +
+                                    " high, " + format_number(100 * pattern.unexplained) + " % of it unexplained";
             const std::string refused =
                 pattern.side == 0 ? "the selected bump stands neither above nor below the surface around it"
                 : pattern.unexplained <= bump_max_unexplained
-                    ? "the selected bump is no bump (" + fit + ": lower than " + num(bump_min_height) +
+                    ? "the selected bump is no bump (" + fit + ": lower than " + format_number(bump_min_height) +
                           " of its radius)"
                     : "the selected bump is not one of a pattern of bumps on a smoother surface (" + fit +
-                          ", more than " + num(100 * bump_max_unexplained) +
+                          ", more than " + format_number(100 * bump_max_unexplained) +
                           " %): the surface's own detail at this size dominates";
-            const std::string detail = "the lowpass removed detail of " + num(bump.removed_detail) +
-                                       " RMS across the selection (the threshold: " + num(bump_min_height) +
-                                       " of its radius, " + num(bump_min_height * out.feature->radius) + ")";
+            const std::string detail = "the lowpass removed detail of " + format_number(bump.removed_detail) +
+                                       " RMS across the selection (the threshold: " + format_number(bump_min_height) +
+                                       " of its radius, " + format_number(bump_min_height * out.feature->radius) + ")";
             switch (bump.outcome) {
             case SelectedBumpOutcome::PatternRemoved:
                 out.log.push_back(std::string("pattern of bumps removed (the selected one points ") +
                                   (pattern.side > 0 ? "outwards" : "inwards") + "): " + std::to_string(pattern.bumps) +
                                   " bumps of " + std::to_string(pattern.candidates) + " peaks, " + fit +
-                                  "; volume removed " + num(pattern.removed_volume));
+                                  "; volume removed " + format_number(pattern.removed_volume));
                 break;
             case SelectedBumpOutcome::FlatLowpass: {
                 const std::string why = "fell back to the flat lowpass because " + refused + "; " + detail +
@@ -585,8 +583,8 @@ CloudSurface as_surface_for_filtering(const Points& points, const std::vector<in
         }
     if (isolated > 0)
         s.warnings.push_back(std::to_string(isolated) + " isolated point(s) (point " + std::to_string(first) +
-                             " first): the nearest other point is more than " + num(isolated_factor) +
-                             " times the median spacing " + num(median) +
+                             " first): the nearest other point is more than " + format_number(isolated_factor) +
+                             " times the median spacing " + format_number(median) +
                              " away; their neighbourhoods reach across the gap and the filter pulls them towards it");
     return s;
 }

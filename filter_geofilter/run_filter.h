@@ -3,9 +3,9 @@
 // say what happened in log lines. Adapters only translate to and from their API.
 #pragma once
 
-#include "core/feature.h"
-#include "core/filter.h"
-#include "core/point_cloud_laplace.h"
+#include "core/feature/feature.h"
+#include "core/filter/filter.h"
+#include "core/operators/point_cloud_laplace.h"
 #include "core/types.h"
 #include "filter_table.h"
 

@@ -7,8 +7,6 @@ namespace geofilter {
 
 namespace {
 
-std::string num(double v) { return format_number(v); }
-
 std::vector<double> weight_from_quality(const RunInput& input, std::vector<std::string>& log) {
     if (!input.vertex_quality || input.vertex_quality->empty())
         throw Error("region = quality needs a per-vertex quality and the mesh has none: compute or paint one first"
@@ -31,8 +29,8 @@ std::vector<double> weight_from_quality(const RunInput& input, std::vector<std::
         if (w[i] != q[i]) ++clamped;
     }
     if (clamped > 0)
-        log.push_back("warning: " + std::to_string(clamped) + " vertex qualities outside [0, 1] (from " + num(low) +
-                      " to " + num(high) + ") clamped to [0, 1]");
+        log.push_back("warning: " + std::to_string(clamped) + " vertex qualities outside [0, 1] (from " + format_number(low) +
+                      " to " + format_number(high) + ") clamped to [0, 1]");
     return w;
 }
 
@@ -49,7 +47,7 @@ std::vector<double> region_weight_from_values(int region, double blend_width, co
         throw Error("region = selected faces but no faces are selected: select the region first (e.g. with the"
                     " selection tools or Conditional Face Selection), or choose region = whole mesh");
     if (!std::isfinite(blend_width) || blend_width < 0)
-        throw Error("blendWidth must be a finite number >= 0 (got " + num(blend_width) + "); 0 = auto");
+        throw Error("blendWidth must be a finite number >= 0 (got " + format_number(blend_width) + "); 0 = auto");
     std::string how = "as given";
     if (blend_width == 0) {
         const auto [width, chosen] = auto_width();
@@ -60,7 +58,7 @@ std::vector<double> region_weight_from_values(int region, double blend_width, co
     }
     std::vector<double> weight = region_weight(input.points, input.triangles, input.selected_faces, blend_width);
     log.push_back("region: the " + std::to_string(input.selected_faces.size()) +
-                  " selected faces, fading to untouched across a band of width " + num(blend_width) + " (" + how + ")");
+                  " selected faces, fading to untouched across a band of width " + format_number(blend_width) + " (" + how + ")");
     return weight;
 }
 
@@ -70,10 +68,10 @@ Points filter_region(int region, double blend_width, const RunInput& input, cons
     const bool sphere = shape == FeatureShape::Sphere;
     const std::vector<double> weight = region_weight_from_values(region, blend_width, input, [&] {
         return std::make_pair(s_feature > 0 ? std::sqrt((sphere ? 2.0 : 1.0) / s_feature) : 0.0,
-                              "the feature radius at s = " + num(s_feature) + (sphere ? ", sqrt(2/s)" : ", sqrt(1/s)"));
+                              "the feature radius at s = " + format_number(s_feature) + (sphere ? ", sqrt(2/s)" : ", sqrt(1/s)"));
     }, log);
     RegionReport r;
-    Points out = apply_filter_weighted(input.points, input.triangles, g, weight, options, &report, &r);
+    Points out = apply_filter_weighted(input.points, input.triangles, g, weight, options, &report, &r, input.cache);
     const auto untouched = input.points.rows() - r.domain_vertices;
     log.push_back("region: " + std::to_string(r.domain_vertices) + " vertices with weight > 0 filtered as one domain, " +
                   std::to_string(r.ring_vertices) + " around them held fixed (" + std::to_string(r.submesh_vertices) +

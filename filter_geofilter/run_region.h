@@ -2,7 +2,7 @@
 // run_filter's part for region != whole mesh, kept apart so that run_filter stays one path.
 #pragma once
 
-#include "core/region.h"
+#include "core/filter/region.h"
 #include "run_filter.h"
 
 #include <functional>

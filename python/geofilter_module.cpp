@@ -1,7 +1,7 @@
 // The Python module `geofilter`: the filter table's filters on numpy arrays, without
 // MeshLab. A thin adapter like the MeshLab plugins: it reads arrays and keyword arguments,
 // calls run_filter, and returns arrays and the report.
-#include "core/point_cloud_laplace.h"
+#include "core/operators/point_cloud_laplace.h"
 #include "exact_pairs.h"
 #include "run_filter.h"
 

@@ -1,14 +1,16 @@
 #!/usr/bin/env bash
 # Builds, from a Debian source package, the parts of a MeshLab 2022.02 or later that
-# GeoFilter's 2022 adapter is tested against (libmeshlab-common, the meshlab GUI (float
-# only), plugins io_base, filter_create, filter_select, filter_unsharp), once per machine:
-# trixie's 2022.02 by default, sid's 2025.07 with --suite sid.
+# GeoFilter's 2022 adapter is tested against (libmeshlab-common and the plugins io_base and
+# filter_create), once per machine: trixie's 2022.02 by default, sid's 2025.07 with --suite
+# sid. With --gui also the meshlab GUI and the plugins of its Smoothing menu (filter_select,
+# filter_unsharp), for the screenshots; the tests do not need them.
 #
-#   build-meshlab-source.sh [--double] [--suite SUITE]
+#   build-meshlab-source.sh [--double] [--suite SUITE] [--gui]
 #     --double   MeshLab with double-precision scalars (BUILD_WITH_DOUBLE_SCALAR), as
 #                pymeshlab 2025.7 is built; kept in its own build folder.
 #     --suite    another Debian suite's MeshLab (default trixie: 2022.02; sid had 2025.07),
 #                to check the plugin against a later FilterPlugin release.
+#     --gui      the GUI too (float only: pymeshlab's double build has none).
 #
 # Environment: GEOFILTER_CACHE_DIR  where sources and builds are kept (default
 #                /var/cache/geofilter when writable, else ${XDG_CACHE_HOME:-~/.cache}/geofilter)
@@ -17,12 +19,13 @@
 set -euo pipefail
 top=$(cd "$(dirname "$0")/.." && pwd)
 
-scalar=float suite=trixie
+scalar=float suite=trixie with_gui=no
 while [ $# -gt 0 ]; do
     case "$1" in
         --double) scalar=double ;;
         --suite) suite=${2:?--suite needs a Debian suite}; shift ;;
-        *) echo "usage: $0 [--double] [--suite SUITE]" >&2; exit 2 ;;
+        --gui) with_gui=yes ;;
+        *) echo "usage: $0 [--double] [--suite SUITE] [--gui]" >&2; exit 2 ;;
     esac
     shift
 done
@@ -38,20 +41,28 @@ fi
 mkdir -p "$cache"
 cache=$(cd "$cache" && pwd)
 
-# The plugins our tests load next to GeoFilter; anything else would only cost build time.
-plugins=(io_base filter_create filter_select filter_unsharp)
-# The GUI only in float, its default precision (the screenshots use it); the double build is
-# pymeshlab's precision, and pymeshlab has no GUI: leaving it out saves a quarter of the build.
-gui=(meshlab); [ "$scalar" = double ] && gui=()
+# What the tests load next to GeoFilter (files through io_base, meshes from filter_create);
+# the GUI and its smoothing menu only on request. libmeshlab-common and these two plugins
+# take about 4 minutes on two cores, the GUI and the two other plugins as long again.
+plugins=(io_base filter_create)
+gui=()
+if [ "$with_gui" = yes ]; then
+    [ "$scalar" = float ] || { echo "build-meshlab-source: --gui is float only (the GUI's precision)" >&2; exit 2; }
+    plugins+=(filter_select filter_unsharp)
+    gui=(meshlab)
+fi
 targets=(meshlab-common "${gui[@]}" "${plugins[@]}" copy-distrib-files)
-plugin_dirs=$(printf 'meshlabplugins/%s;' "${plugins[@]}"); plugin_dirs=${plugin_dirs%;}
+# Configured with every plugin either mode builds, so that a later --gui builds only what it adds.
+all_plugins=(io_base filter_create filter_select filter_unsharp)
+plugin_dirs=$(printf 'meshlabplugins/%s;' "${all_plugins[@]}"); plugin_dirs=${plugin_dirs%;}
 
 fetch_dest=$cache/meshlab-$suite-source
 label=$suite; [ "$suite" = trixie ] && label=2022
 build=$cache/meshlab-$label-$scalar-build
 stamp=$build/.geofilter-build-complete
-# Everything that changes the result; a stamp with another signature means rebuild.
-signature="targets=${targets[*]} plugins=$plugin_dirs scalar=$scalar script=2"
+# Everything that changes what is built; a stamp with another signature means configure and
+# build again (make then recompiles only what the change touched).
+signature="plugins=$plugin_dirs scalar=$scalar script=3"
 
 report() {
     echo "MESHLAB_SOURCE_DIR=$1"

@@ -6,21 +6,36 @@
 #      normal build; then the Debian package (scripts/test-deb.sh: installs it, runs the
 #      system meshlabserver and geofilter, removes it);
 #   2. the unit and command-line tests again on a build with AddressSanitizer and
-#      UndefinedBehaviorSanitizer;
+#      UndefinedBehaviorSanitizer (all but the quality checks on real scans and large meshes,
+#      label `large`, which step 1 runs);
 #   3. the MeshLab 2022.02 plugin: MeshLab 2022.02 built from Debian trixie's source package
 #      (cached in /var/cache/geofilter after the first run), the plugin built against it, and
 #      its PluginManager test, which also compares results with the 2020.09 plugin;
 #   4. the same against MeshLab 2025.07 (Debian sid's source package, cached the same way), in
 #      float (the GUI's precision) and in double (pymeshlab 2025.7's): every filter run
 #      through pymeshlab's FunctionSet by python name and python keyword names.
+#
+#   test.sh --quick   the edit loop: the unit, command-line and Python tests on a build
+#                     without the plugin and MPI (build-quick/), no sanitizer, no MeshLab.
 set -euo pipefail
 top=$(cd "$(dirname "$0")/.." && pwd)
+export CCACHE_BASEDIR="$top" CCACHE_NOHASHDIR=true
+
+if [ "${1:-}" = --quick ]; then
+    shift
+    quick=${GEOFILTER_BUILD_DIR:-$top/build-quick}
+    "$top/scripts/setup.sh"
+    GEOFILTER_BUILD_DIR=$quick "$top/scripts/build.sh" -DGEOFILTER_BUILD_PLUGIN=OFF -DGEOFILTER_BUILD_MPI=OFF
+    export GTEST_SHUFFLE=1
+    cd "$quick"
+    exec ctest -j"$(nproc)" --output-on-failure --timeout 900 -L 'unit|cli|python' "$@"
+fi
+
 build=${GEOFILTER_BUILD_DIR:-$top/build}
 "$top/scripts/setup.sh"
-# ccache (CMake compiles through it when installed) keys its cache on paths relative to this
-# checkout and ignores the working directory, so that a clean clone anywhere on the machine
-# reuses what an earlier run compiled; only what changed is compiled again.
-export CCACHE_BASEDIR="$top" CCACHE_NOHASHDIR=true
+# (CCACHE_BASEDIR above: ccache, which CMake compiles through when installed, keys its cache
+# on paths relative to this checkout and ignores the working directory, so that a clean clone
+# anywhere on the machine reuses what an earlier run compiled.)
 # geofilter-mpi and its tests (label mpi) are required here: setup.sh installs MPI and PETSc,
 # so their absence is an error, not a suite that silently vanishes.
 "$top/scripts/build.sh" -DGEOFILTER_REQUIRE_MPI=ON
@@ -51,7 +66,7 @@ fi
     -DGEOFILTER_BUILD_PLUGIN=OFF -DGEOFILTER_BUILD_PYTHON=OFF -DGEOFILTER_BUILD_MPI=OFF >/dev/null
 "${offline[@]}" cmake --build "$asan" -j"$(nproc)"
 (cd "$asan" && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
-    ctest "$ctest_jobs" --output-on-failure --timeout 900 -L 'unit|cli')
+    ctest "$ctest_jobs" --output-on-failure --timeout 900 -L 'unit|cli' -LE large)
 
 echo "== MeshLab 2022.02 (FilterPlugin API) plugin"
 "$top/scripts/test-meshlab2022.sh"

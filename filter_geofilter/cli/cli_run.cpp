@@ -32,8 +32,6 @@ extern "C" void on_interrupt(int) {
     std::signal(SIGINT, SIG_DFL);
 }
 
-std::string num(double v, int digits = 6) { return format_number(v, digits); }
-
 std::string lower_extension(const std::string& path) {
     const auto dot = path.find_last_of('.');
     std::string ext = dot == std::string::npos ? "" : path.substr(dot + 1);
@@ -67,20 +65,20 @@ TransferPlot make_plot(const FilterSpec& spec, const ParameterValues& values, co
                        std::string& design) {
     TransferPlot plot;
     plot.g = out.transfer;
-    const std::string feature_note = feature.known ? " (feature, r = " + num(feature.radius) + ")" : "";
+    const std::string feature_note = feature.known ? " (feature, r = " + format_number(feature.radius) + ")" : "";
     if (spec.kind == FilterKind::SecondOrder) {
         const double s2 = out.s2_used;
-        design = "s1 = " + num(out.s1_used) + ", s2 = " + num(s2) + ", G0 = " + num(values.at(param::G0)) +
-                 ", G1 = " + num(values.at(param::G1)) + ", Ginf = " + num(values.at(param::Ginf));
+        design = "s1 = " + format_number(out.s1_used) + ", s2 = " + format_number(s2) + ", G0 = " + format_number(values.at(param::G0)) +
+                 ", G1 = " + format_number(values.at(param::G1)) + ", Ginf = " + format_number(values.at(param::Ginf));
         plot.title = "geofilter " + spec.cli_name + ", eq. 15: " + design;
-        plot.markers = {{"s1 = " + num(out.s1_used) + feature_note, out.s1_used}, {"s2 = " + num(s2), s2}};
+        plot.markers = {{"s1 = " + format_number(out.s1_used) + feature_note, out.s1_used}, {"s2 = " + format_number(s2), s2}};
         return plot;
     }
     if (spec.kind == FilterKind::Butterworth || spec.kind == FilterKind::Denoise) {
-        design = "Butterworth order " + num(values.at(param::order)) + ", cutoff sc = " + num(out.s1_used) + ", operator " +
+        design = "Butterworth order " + format_number(values.at(param::order)) + ", cutoff sc = " + format_number(out.s1_used) + ", operator " +
                  operator_name(out.op);
         plot.title = "geofilter " + spec.cli_name + ": " + design;
-        plot.markers = {{"sc = " + num(out.s1_used) + feature_note, out.s1_used}};
+        plot.markers = {{"sc = " + format_number(out.s1_used) + feature_note, out.s1_used}};
         return plot;
     }
     // Pole-zero: run_filter scaled every corner when the selection set one of them.
@@ -99,10 +97,10 @@ TransferPlot make_plot(const FilterSpec& spec, const ParameterValues& values, co
         if (!(c > 0)) continue;
         const bool zero = i < size_t(param::max_pole_zero);
         (zero ? pz.zeros : pz.poles).push_back(c);
-        (zero ? zeros : poles) += (zero ? zeros : poles).empty() ? num(c) : ", " + num(c);
-        plot.markers.push_back({names[i] + " = " + num(c) + (int(i) == corner ? feature_note : ""), c});
+        (zero ? zeros : poles) += (zero ? zeros : poles).empty() ? format_number(c) : ", " + format_number(c);
+        plot.markers.push_back({names[i] + " = " + format_number(c) + (int(i) == corner ? feature_note : ""), c});
     }
-    design = "G0 = " + num(pz.G0) + ", zeros " + (zeros.empty() ? "none" : zeros) + ", poles " +
+    design = "G0 = " + format_number(pz.G0) + ", zeros " + (zeros.empty() ? "none" : zeros) + ", poles " +
              (poles.empty() ? "none" : poles);
     plot.title = "geofilter " + spec.cli_name + ", eq. 16: " + design;
     plot.asymptotes = pz;
@@ -199,9 +197,9 @@ int run(const CliOptions& o, const CommandLineTool& tool) {
             // The summary is the measurement asked for: printed even with --quiet.
             const FeatureEllipsoid& e = *out.feature;
             // 10 digits: the measurement is the result here, and a script may compare it.
-            summary << program << ": measure: r = " << num(e.radius, 10) << ": sphere-like s = 2/r^2 = "
-                    << num(e.frequency(FeatureShape::Sphere), 10) << ", cylinder-like s = 1/r^2 = "
-                    << num(e.frequency(FeatureShape::Cylinder), 10) << " ("
+            summary << program << ": measure: r = " << format_number(e.radius, 10) << ": sphere-like s = 2/r^2 = "
+                    << format_number(e.frequency(FeatureShape::Sphere), 10) << ", cylinder-like s = 1/r^2 = "
+                    << format_number(e.frequency(FeatureShape::Cylinder), 10) << " ("
                     << (e.point_count > 0 ? std::to_string(e.point_count) + " points" : std::to_string(e.face_count) + " faces")
                     << ")";
             if (!o.output.empty()) summary << "; ellipsoid written to " << o.output;
@@ -223,8 +221,8 @@ int run(const CliOptions& o, const CommandLineTool& tool) {
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
         std::cout << program << ": " << spec.cli_name << ": " << o.input << " -> " << o.output << ": "
                   << out.report.active_vertices << " vertices filtered; " << design
-                  << (feature.known ? "; feature r = " + num(feature.radius) : std::string()) << "; "
-                  << solver_used(out.report) << ", " << num(seconds, 3) << " s" << std::endl;
+                  << (feature.known ? "; feature r = " + format_number(feature.radius) : std::string()) << "; "
+                  << solver_used(out.report) << ", " << format_number(seconds, 3) << " s" << std::endl;
     }
     return 0;
 }

@@ -8,8 +8,6 @@ namespace geofilter::cli {
 
 namespace {
 
-std::string num(double v) { return format_number(v); }
-
 template <class Inside>
 std::vector<int> faces_inside(const Points& points, const Triangles& triangles, Inside inside) {
     std::vector<int> faces;
@@ -24,8 +22,8 @@ std::vector<int> faces_inside(const Points& points, const Triangles& triangles, 
 std::string describe_box(const Points& points) {
     if (points.rows() == 0) return "the mesh has no vertices";
     const Eigen::RowVector3d lo = points.colwise().minCoeff(), hi = points.colwise().maxCoeff();
-    return "the mesh spans (" + num(lo[0]) + ", " + num(lo[1]) + ", " + num(lo[2]) + ") to (" + num(hi[0]) + ", " +
-           num(hi[1]) + ", " + num(hi[2]) + ")";
+    return "the mesh spans (" + format_number(lo[0]) + ", " + format_number(lo[1]) + ", " + format_number(lo[2]) + ") to (" + format_number(hi[0]) + ", " +
+           format_number(hi[1]) + ", " + format_number(hi[2]) + ")";
 }
 
 } // namespace
@@ -43,11 +41,11 @@ std::vector<int> select_points(const Points& points, const CliOptions& options, 
         log.push_back(what + ": " + std::to_string(found) + " points");
     };
     for (const auto& s : options.spheres)
-        take("--select-sphere " + num(s.center[0]) + "," + num(s.center[1]) + "," + num(s.center[2]) + "," + num(s.radius),
+        take("--select-sphere " + format_number(s.center[0]) + "," + format_number(s.center[1]) + "," + format_number(s.center[2]) + "," + format_number(s.radius),
              [&](const Eigen::Vector3d& p) { return (p - s.center).squaredNorm() <= s.radius * s.radius; });
     for (const auto& b : options.boxes)
-        take("--select-box " + num(b.low[0]) + "," + num(b.low[1]) + "," + num(b.low[2]) + "," + num(b.high[0]) + "," +
-                 num(b.high[1]) + "," + num(b.high[2]),
+        take("--select-box " + format_number(b.low[0]) + "," + format_number(b.low[1]) + "," + format_number(b.low[2]) + "," + format_number(b.high[0]) + "," +
+                 format_number(b.high[1]) + "," + format_number(b.high[2]),
              [&](const Eigen::Vector3d& p) {
                  return (p.array() >= b.low.array()).all() && (p.array() <= b.high.array()).all();
              });
@@ -64,8 +62,8 @@ std::vector<int> select_faces(const Points& points, const Triangles& triangles, 
         const auto faces = faces_inside(points, triangles, [&](const Eigen::Vector3d& p) {
             return (p - s.center).squaredNorm() <= s.radius * s.radius;
         });
-        const std::string what = "--select-sphere " + num(s.center[0]) + "," + num(s.center[1]) + "," + num(s.center[2]) +
-                                 "," + num(s.radius);
+        const std::string what = "--select-sphere " + format_number(s.center[0]) + "," + format_number(s.center[1]) + "," + format_number(s.center[2]) +
+                                 "," + format_number(s.radius);
         if (faces.empty()) throw Error(what + " holds no face with all three vertices inside: " + describe_box(points));
         log.push_back(what + ": " + std::to_string(faces.size()) + " faces");
         selected.insert(selected.end(), faces.begin(), faces.end());
@@ -74,8 +72,8 @@ std::vector<int> select_faces(const Points& points, const Triangles& triangles, 
         const auto faces = faces_inside(points, triangles, [&](const Eigen::Vector3d& p) {
             return (p.array() >= b.low.array()).all() && (p.array() <= b.high.array()).all();
         });
-        const std::string what = "--select-box " + num(b.low[0]) + "," + num(b.low[1]) + "," + num(b.low[2]) + "," +
-                                 num(b.high[0]) + "," + num(b.high[1]) + "," + num(b.high[2]);
+        const std::string what = "--select-box " + format_number(b.low[0]) + "," + format_number(b.low[1]) + "," + format_number(b.low[2]) + "," +
+                                 format_number(b.high[0]) + "," + format_number(b.high[1]) + "," + format_number(b.high[2]);
         if (faces.empty()) throw Error(what + " holds no face with all three vertices inside: " + describe_box(points));
         log.push_back(what + ": " + std::to_string(faces.size()) + " faces");
         selected.insert(selected.end(), faces.begin(), faces.end());

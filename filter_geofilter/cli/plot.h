@@ -1,7 +1,7 @@
 // --plot: the transfer function G(s) as a PNG, drawn by gnuplot.
 #pragma once
 
-#include "core/transfer_function.h"
+#include "core/design/transfer_function.h"
 
 #include <optional>
 #include <string>

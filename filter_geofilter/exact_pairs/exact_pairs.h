@@ -3,7 +3,7 @@
 // geofilter-mpi does not link this: it solves its pairs on its own distributed engine.
 #pragma once
 
-#include "core/complex_shifted_factor.h"
+#include "core/solve/complex_shifted_factor.h"
 
 namespace geofilter {
 

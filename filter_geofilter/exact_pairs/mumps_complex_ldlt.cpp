@@ -2,7 +2,7 @@
 
 #include "mumps_shifted_ldlt.h"
 
-#include "core/mixed_precision_factor.h"
+#include "core/solve/mixed_precision_factor.h"
 
 namespace geofilter {
 

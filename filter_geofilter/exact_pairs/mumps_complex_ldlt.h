@@ -4,7 +4,7 @@
 // geofilter-mpi, which solves its pairs on its own distributed engine anyway.
 #pragma once
 
-#include "core/complex_shifted_factor.h"
+#include "core/solve/complex_shifted_factor.h"
 
 namespace geofilter {
 

@@ -5,10 +5,10 @@
 // (sequential or parallel; the same structure, other libraries), and they never meet in one
 // program. Each comes in MUMPS's two complex arithmetics: single precision (CMUMPS), whose
 // factor takes half the memory and which the exact pair solve refines in double precision,
-// and double (ZMUMPS), for when that refinement stalls (core/mixed_precision_factor.h).
+// and double (ZMUMPS), for when that refinement stalls (core/solve/mixed_precision_factor.h).
 #pragma once
 
-#include "core/complex_shifted_factor.h"
+#include "core/solve/complex_shifted_factor.h"
 
 #include <cmumps_c.h>
 #include <zmumps_c.h>

@@ -4,7 +4,7 @@
 #ifndef GEOFILTER_MESHLAB2020_PLUGIN_H
 #define GEOFILTER_MESHLAB2020_PLUGIN_H
 
-#include "core/filter_cache.h"
+#include "core/filter/filter_cache.h"
 
 #include <QObject>
 #include <common/interfaces.h>

@@ -7,7 +7,7 @@
 #ifndef GEOFILTER_MESHLAB2022_PLUGIN_H
 #define GEOFILTER_MESHLAB2022_PLUGIN_H
 
-#include "core/filter_cache.h"
+#include "core/filter/filter_cache.h"
 
 #include <QObject>
 #include <common/plugins/interfaces/filter_plugin.h>

@@ -1,6 +1,6 @@
 #include "distributed_complex_ldlt.h"
 
-#include "core/mixed_precision_factor.h"
+#include "core/solve/mixed_precision_factor.h"
 #include "exact_pairs/mumps_shifted_ldlt.h"
 
 #include <string>

@@ -4,7 +4,7 @@
 // rows of a distributed PETSc matrix; the right-hand sides and solutions are each rank's rows.
 #pragma once
 
-#include "core/complex_shifted_factor.h"
+#include "core/solve/complex_shifted_factor.h"
 
 #include <mpi.h>
 #include <petscmat.h>

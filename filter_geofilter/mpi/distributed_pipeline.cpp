@@ -3,11 +3,11 @@
 #include "ply_slices.h"
 #include "ranks.h"
 
-#include "core/components.h"
-#include "core/feature.h"
-#include "core/laplace.h"
-#include "core/mesh_prep.h"
-#include "core/solvers.h"
+#include "core/mesh/components.h"
+#include "core/feature/feature.h"
+#include "core/operators/laplace.h"
+#include "core/mesh/mesh_prep.h"
+#include "core/solve/solvers.h"
 #include "filter_table.h"
 
 #include <petscis.h>
@@ -307,8 +307,6 @@ LocalMesh read_local_mesh(MPI_Comm comm, const FileJob& job, PlyLayout& layout) 
     return m;
 }
 
-std::string num(double v) { return format_number(v); }
-
 // The faces of this rank inside the job's spheres and boxes (all three corners, as geofilter
 // selects), and the log lines of the counts over all ranks; refuses an empty region as
 // geofilter does.
@@ -333,18 +331,18 @@ std::vector<int> select_local_faces(MPI_Comm comm, const FileJob& job, const Loc
             }
             MPI_Allreduce(MPI_IN_PLACE, lo.data(), 3, MPI_DOUBLE, MPI_MIN, comm);
             MPI_Allreduce(MPI_IN_PLACE, hi.data(), 3, MPI_DOUBLE, MPI_MAX, comm);
-            throw Error(what + " holds no face with all three vertices inside: the mesh spans (" + num(lo[0]) + ", " +
-                        num(lo[1]) + ", " + num(lo[2]) + ") to (" + num(hi[0]) + ", " + num(hi[1]) + ", " + num(hi[2]) + ")");
+            throw Error(what + " holds no face with all three vertices inside: the mesh spans (" + format_number(lo[0]) + ", " +
+                        format_number(lo[1]) + ", " + format_number(lo[2]) + ") to (" + format_number(hi[0]) + ", " + format_number(hi[1]) + ", " + format_number(hi[2]) + ")");
         }
         log.push_back(what + ": " + std::to_string(count) + " faces");
     };
     for (const auto& s : job.spheres)
         take([&](const Eigen::Vector3d& p) { return (p - s.center).squaredNorm() <= s.radius * s.radius; },
-             "--select-sphere " + num(s.center[0]) + "," + num(s.center[1]) + "," + num(s.center[2]) + "," + num(s.radius));
+             "--select-sphere " + format_number(s.center[0]) + "," + format_number(s.center[1]) + "," + format_number(s.center[2]) + "," + format_number(s.radius));
     for (const auto& b : job.boxes)
         take([&](const Eigen::Vector3d& p) { return (p.array() >= b.low.array()).all() && (p.array() <= b.high.array()).all(); },
-             "--select-box " + num(b.low[0]) + "," + num(b.low[1]) + "," + num(b.low[2]) + "," + num(b.high[0]) + "," +
-                 num(b.high[1]) + "," + num(b.high[2]));
+             "--select-box " + format_number(b.low[0]) + "," + format_number(b.low[1]) + "," + format_number(b.low[2]) + "," + format_number(b.high[0]) + "," +
+                 format_number(b.high[1]) + "," + format_number(b.high[2]));
     std::sort(selected.begin(), selected.end());
     selected.erase(std::unique(selected.begin(), selected.end()), selected.end());
     return selected;

@@ -4,9 +4,9 @@
 #include "distributed_pipeline.h"
 #include "ranks.h"
 
-#include "core/cascade.h"
-#include "core/exact_pair.h"
-#include "core/solvers.h"
+#include "core/solve/cascade.h"
+#include "core/solve/exact_pair.h"
+#include "core/solve/solvers.h"
 
 #include <petscksp.h>
 #include <petscmat.h>

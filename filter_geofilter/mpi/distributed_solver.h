@@ -9,7 +9,7 @@
 // finish_serving().
 #pragma once
 
-#include "core/filter.h"
+#include "core/filter/filter.h"
 
 #include <mpi.h>
 #include <petscmat.h>

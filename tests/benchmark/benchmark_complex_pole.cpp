@@ -16,13 +16,14 @@
 //             solver uses)
 // Prints one table row (times, factor size, peak memory of this process). One case per
 // process, so that the peak is the case's own: scripts/benchmark-complex-pole.sh runs them.
-#include "core/butterworth.h"
-#include "core/exact_pair.h"
-#include "core/filter.h"
-#include "core/icosphere.h"
-#include "core/laplace.h"
-#include "core/mixed_precision_factor.h"
-#include "core/transfer_function.h"
+#include "core/design/butterworth.h"
+#include "core/solve/exact_pair.h"
+#include "core/filter/filter.h"
+#include "core/feature/icosphere.h"
+#include "core/mesh/subdivide.h"
+#include "core/operators/laplace.h"
+#include "core/solve/mixed_precision_factor.h"
+#include "core/design/transfer_function.h"
 #include "benchmark_support.h"
 #include "exact_pairs/mumps_shifted_ldlt.h"
 #include "mesh_io.h"

@@ -3,18 +3,18 @@
 // of ~10k, ~100k and ~1M vertices normalised to unit bounding-box diagonal, for the paper's
 // presets and the Butterworth lowpass; then what a preview rerun costs through a
 // FilterCache. Every case runs in a forked child so that its peak memory is its own.
-#include "core/butterworth.h"
-#include "core/denoise.h"
-#include "core/filter.h"
-#include "core/laplace.h"
-#include "core/region.h"
-#include "core/shifted_cholesky.h"
-#include "core/supernodal_solve.h"
-#include "core/surface_measures.h"
+#include "core/design/butterworth.h"
+#include "core/denoise/denoise.h"
+#include "core/filter/filter.h"
+#include "core/operators/laplace.h"
+#include "core/filter/region.h"
+#include "core/solve/shifted_cholesky.h"
+#include "core/solve/supernodal_solve.h"
+#include "core/mesh/surface_measures.h"
 #include "benchmark_support.h"
 #include "shapes.h"
-#include "core/solvers.h"
-#include "core/transfer_function.h"
+#include "core/solve/solvers.h"
+#include "core/design/transfer_function.h"
 #include "exact_pairs.h"
 
 // vcglib headers are not self-contained: complex.h must come first.

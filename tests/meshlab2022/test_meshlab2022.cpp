@@ -11,8 +11,8 @@
 // GEOFILTER_TEST_WORKDIR/cases.json, which test_compare_2020.py replays with the 2020.09
 // plugin through meshlabserver.
 
-#include "core/filter.h"
-#include "core/region.h"
+#include "core/filter/filter.h"
+#include "core/filter/region.h"
 #include "shapes.h"
 #include "filter_table.h"
 #include "reference_design.h"

@@ -3,9 +3,15 @@ the filter table (and the feature, operator and boundary options that reach the 
 to 1e-7 of the bounding-box diagonal. N comes from $GEOFILTER_MPI_RANKS (one ctest per N).
 The mesh is a binary PLY, so that the presets on the cotangent Laplacian of the whole mesh
 take the path that reads, assembles and writes by slices, and the others (Denoise, the
-fixed boundary, another operator) the path where rank 0 reads the mesh."""
+fixed boundary, another operator) the path where rank 0 reads the mesh.
 
+geofilter's results (the reference) are computed once for every rank count: `--references`
+writes them (ctest's mpi.references, a fixture of each mpi.presets.npN) and the tests read them."""
+
+import json
 import os
+import re
+import shutil
 import sys
 import unittest
 
@@ -18,6 +24,16 @@ import shapes
 
 RANKS = int(os.environ.get("GEOFILTER_MPI_RANKS", "2"))
 AGREEMENT = 1e-7  # of the bounding-box diagonal, at every vertex
+DENOISE_RANKS = 2  # the rank count that runs Denoise with nothing selected (see cases)
+BUMP_RADIUS = 0.15
+
+
+def references_dir():
+    return os.path.join(os.environ.get("GEOFILTER_TEST_WORKDIR") or "/tmp", "mpi_presets_references")
+
+
+def slug(name):
+    return re.sub(r"[^A-Za-z0-9]+", "_", name)
 
 
 def feature_selection(vertices):
@@ -31,13 +47,13 @@ def reads_by_slices(preset, options):
     return preset != "denoise" and "--fix-boundary" not in options and "--operator" not in options
 
 
-def cases(vertices):
+def cases(vertices, ranks=RANKS):
     """(name, preset, options): every filter of the table at its defaults, then the options
     that change what the distributed solver is given."""
     out = [(f["cli_name"], f["cli_name"], []) for f in filter_table.TABLE if f["kind"] != "Measure"]
     assert len(out) >= 9, "the filter table lost its presets"
     assert any(case[1] == "denoise" for case in out), "the filter table lost Denoise"
-    if RANKS != 2:
+    if ranks != DENOISE_RANKS:
         # Denoise with nothing selected runs a whole filter per candidate cutoff through the
         # distributed solver (a factorisation per candidate, 90 s at two ranks on two cores): at two
         # ranks only. Every rank count still runs Denoise of a selected bump (below), which takes
@@ -54,11 +70,51 @@ def cases(vertices):
     return out
 
 
+def bumpy_case(directory):
+    """A sphere covered with Gaussian bumps as a binary PLY, and the selection of one of them."""
+    bare, bumpy, faces, centres = shapes.bumpy_sphere(5, 60, BUMP_RADIUS)
+    mesh = os.path.join(directory, "bumpy.ply")
+    mpi_harness.write_binary_ply(mesh, bumpy, faces)
+    bumpy = cli_harness.read_mesh(mesh).vertices  # as stored (float)
+    centre = bumpy[np.argmin(np.sum((bare - centres[0]) ** 2, axis=1))]
+    return mesh, ["--select-sphere", ",".join(f"{x:.6f}" for x in centre) + f",{BUMP_RADIUS}"]
+
+
+def write_references():
+    """geofilter on every case of every rank count, once: the outputs and what geofilter printed."""
+    directory = references_dir()
+    shutil.rmtree(directory, ignore_errors=True)
+    os.makedirs(directory)
+    mesh = mpi_harness.real_mesh_as_binary_ply(directory)
+    vertices = cli_harness.read_mesh(mesh).vertices
+    bumpy, select = bumpy_case(directory)
+    runs = [(name, preset, options, mesh, True) for name, preset, options in cases(vertices, DENOISE_RANKS)]
+    runs += [("denoise of a selected bump", "denoise", select, bumpy, True),
+             ("measure", "measure", feature_selection(vertices), mesh, False)]
+    printed = {}
+    for name, preset, options, source, writes in runs:
+        output = [os.path.join(directory, slug(name) + ".ply")] if writes else []
+        single = cli_harness.run(preset, *options, source, *output, timeout=300)
+        if single.returncode != 0:
+            raise SystemExit(f"geofilter failed on {name}:\n" + cli_harness.describe(single))
+        printed[name] = {"stdout": single.stdout, "stderr": single.stderr}
+    with open(os.path.join(directory, "printed.json"), "w") as out:
+        json.dump(printed, out)
+    print(f"{len(printed)} references in {directory}")
+
+
 class PresetsMatchGeofilter(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         cls.dir = cli_harness.workdir(f"mpi_presets_np{RANKS}")
-        cls.mesh = mpi_harness.real_mesh_as_binary_ply(cls.dir)
+        cls.references = references_dir()
+        printed = os.path.join(cls.references, "printed.json")
+        if not os.path.exists(printed):
+            raise AssertionError(f"{printed} is missing: run through ctest (mpi.references writes it), or"
+                                 " `python3 test_mpi_presets.py --references` first")
+        with open(printed) as f:
+            cls.printed = json.load(f)
+        cls.mesh = os.path.join(cls.references, "bunny00_binary.ply")
         vertices = cli_harness.read_mesh(cls.mesh).vertices
         cls.diagonal = float(np.linalg.norm(vertices.max(0) - vertices.min(0)))
         cls.input = vertices
@@ -66,16 +122,16 @@ class PresetsMatchGeofilter(unittest.TestCase):
     def test_every_preset_matches_geofilter(self):
         for index, (name, preset, options) in enumerate(cases(self.input)):
             with self.subTest(case=name):
-                reference = os.path.join(self.dir, f"{index}_reference.ply")
+                reference = os.path.join(self.references, slug(name) + ".ply")
                 distributed = os.path.join(self.dir, f"{index}_np{RANKS}.ply")
-                single = cli_harness.run(preset, *options, self.mesh, reference, timeout=300)
-                self.assertEqual(single.returncode, 0, cli_harness.describe(single))
+                self.assertIn(name, self.printed, "the references were written for other cases: rerun mpi.references")
+                single_stdout = self.printed[name]["stdout"]
                 p = mpi_harness.run_mpi(RANKS, preset, *options, self.mesh, distributed)
                 self.assertEqual(p.returncode, 0, cli_harness.describe(p))
                 self.assertEqual(mpi_harness.read_by_slices(p), reads_by_slices(preset, options),
                                  f"{name}: read the mesh the wrong way\n" + p.stderr)
                 # A pair geofilter solves exactly, geofilter-mpi solves exactly too (and no other).
-                self.assertEqual("solved exactly" in p.stdout, "solved exactly" in single.stdout,
+                self.assertEqual("solved exactly" in p.stdout, "solved exactly" in single_stdout,
                                  f"{name}: the two tools solved a pole pair differently\n" + p.stdout)
                 expected = cli_harness.read_mesh(reference).vertices
                 got = cli_harness.read_mesh(distributed).vertices
@@ -89,17 +145,15 @@ class PresetsMatchGeofilter(unittest.TestCase):
     def test_denoise_of_a_selected_bump_matches_geofilter(self):
         # The bunny has no pattern of bumps (Denoise leaves it as it was): a sphere covered with
         # Gaussian bumps, one of them selected. Denoise takes rank 0's whole-mesh path.
-        rho = 0.15
-        bare, bumpy, faces, centres = shapes.bumpy_sphere(5, 60, rho)
-        mesh = os.path.join(self.dir, "bumpy.ply")
-        mpi_harness.write_binary_ply(mesh, bumpy, faces)
-        bumpy = cli_harness.read_mesh(mesh).vertices  # as stored (float)
-        centre = bumpy[np.argmin(np.sum((bare - centres[0]) ** 2, axis=1))]
-        select = ["--select-sphere", ",".join(f"{x:.6f}" for x in centre) + f",{rho}"]
-        reference, distributed = (os.path.join(self.dir, f"bumpy_{tag}.ply") for tag in ("reference", f"np{RANKS}"))
-        single = cli_harness.run("denoise", *select, mesh, reference, timeout=300)
-        self.assertEqual(single.returncode, 0, cli_harness.describe(single))
-        self.assertIn("pattern of bumps removed", single.stderr)
+        name = "denoise of a selected bump"
+        mesh = os.path.join(self.references, "bumpy.ply")
+        bumpy, select = bumpy_case(self.dir)
+        self.assertTrue(np.array_equal(cli_harness.read_mesh(bumpy).vertices, cli_harness.read_mesh(mesh).vertices),
+                        "the references were written for another bumpy sphere: rerun mpi.references")
+        bumpy = cli_harness.read_mesh(mesh).vertices
+        reference = os.path.join(self.references, slug(name) + ".ply")
+        distributed = os.path.join(self.dir, f"bumpy_np{RANKS}.ply")
+        self.assertIn("pattern of bumps removed", self.printed[name]["stderr"])
         p = mpi_harness.run_mpi(RANKS, "denoise", *select, mesh, distributed)
         self.assertEqual(p.returncode, 0, cli_harness.describe(p))
         self.assertFalse(mpi_harness.read_by_slices(p), p.stderr)
@@ -113,14 +167,15 @@ class PresetsMatchGeofilter(unittest.TestCase):
 
     def test_measure_reports_what_geofilter_reports(self):
         ear = feature_selection(self.input)
-        single = cli_harness.run("measure", *ear, self.mesh)
-        self.assertEqual(single.returncode, 0, cli_harness.describe(single))
         p = mpi_harness.run_mpi(RANKS, "measure", *ear, self.mesh)
         self.assertEqual(p.returncode, 0, cli_harness.describe(p))
         summary = [l for l in p.stdout.splitlines() if l.startswith("geofilter-mpi: measure:")]
         self.assertEqual(len(summary), 1, cli_harness.describe(p))
-        self.assertIn(summary[0][len("geofilter-mpi"):], single.stdout)
+        self.assertIn(summary[0][len("geofilter-mpi"):], self.printed["measure"]["stdout"])
 
 
 if __name__ == "__main__":
-    unittest.main()
+    if sys.argv[1:] == ["--references"]:
+        write_references()
+    else:
+        unittest.main()

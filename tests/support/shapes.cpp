@@ -1,11 +1,27 @@
 #include "shapes.h"
-#include "core/surface_measures.h"
+#include "core/mesh/surface_measures.h"
 
 #include <cmath>
 #include <random>
 #include <vector>
 
 namespace geofilter {
+
+Mesh mesh_from_lists(const std::vector<Eigen::Vector3d>& v, const std::vector<Eigen::Vector3i>& f) {
+    Mesh m;
+    m.points.resize(static_cast<Eigen::Index>(v.size()), 3);
+    for (size_t i = 0; i < v.size(); ++i) m.points.row(static_cast<Eigen::Index>(i)) = v[i].transpose();
+    m.triangles.resize(static_cast<Eigen::Index>(f.size()), 3);
+    for (size_t i = 0; i < f.size(); ++i) m.triangles.row(static_cast<Eigen::Index>(i)) = f[i].transpose();
+    return m;
+}
+
+Mesh subdivide_onto_sphere(Mesh mesh, int levels, double radius) {
+    for (int l = 0; l < levels; ++l) mesh = subdivide(mesh);
+    mesh.points.rowwise().normalize();
+    mesh.points *= radius;
+    return mesh;
+}
 
 Mesh tetrasphere(int levels, double radius) {
     const std::vector<Eigen::Vector3d> v = {{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}};

@@ -1,13 +1,20 @@
 // Procedural meshes with known geometry, for the tests, the benchmark and the fuzzers.
 #pragma once
 
-#include "core/icosphere.h"
+#include "core/feature/icosphere.h"
+#include "core/mesh/subdivide.h"
+
+#include <vector>
 
 namespace geofilter {
 
-// (icosphere and subdivide are the production ones, core/icosphere.h.)
+// (icosphere and subdivide are the production ones: core/feature/icosphere.h, core/mesh/subdivide.h.)
 
 // Tetrahedron subdivided the way icosphere is and projected on the sphere.
+// A mesh from vertex and face lists.
+Mesh mesh_from_lists(const std::vector<Eigen::Vector3d>& v, const std::vector<Eigen::Vector3i>& f);
+// `levels` midpoint subdivisions, then every vertex moved radially onto the sphere of `radius`.
+Mesh subdivide_onto_sphere(Mesh mesh, int levels, double radius);
 Mesh tetrasphere(int levels, double radius = 1.0);
 // Latitude/longitude sphere with `rings` latitude bands and `segments` meridians.
 Mesh uv_sphere(int rings, int segments, double radius = 1.0);

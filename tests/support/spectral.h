@@ -2,9 +2,9 @@
 // generalized eigen-decomposition K v = lambda M v (paper eq. 3-8). Test-only: O(n^3).
 #pragma once
 
-#include "core/laplace.h"
+#include "core/operators/laplace.h"
 #include "shapes.h"
-#include "core/transfer_function.h"
+#include "core/design/transfer_function.h"
 
 #include <Eigen/Eigenvalues>
 

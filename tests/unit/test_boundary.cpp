@@ -1,7 +1,7 @@
 // fix_boundary: open boundaries stay put and the interior is filtered in the Dirichlet
 // eigenbasis, relative to the harmonic extension of the boundary.
-#include "core/boundary.h"
-#include "core/filter.h"
+#include "core/mesh/boundary.h"
+#include "core/filter/filter.h"
 #include "spectral.h"
 
 #include <gtest/gtest.h>

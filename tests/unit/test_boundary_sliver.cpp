@@ -1,8 +1,8 @@
 // fixBoundary on a mesh with one sliver just above the degenerate-face threshold: the
 // harmonic extension must stay harmonic (no regularising shift scaled by the stiffest
 // vertex), and the filter must equal the dense Dirichlet spectral filter.
-#include "core/boundary.h"
-#include "core/filter.h"
+#include "core/mesh/boundary.h"
+#include "core/filter/filter.h"
 #include "spectral.h"
 
 #include <gtest/gtest.h>

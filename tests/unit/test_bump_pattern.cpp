@@ -3,8 +3,8 @@
 // mean height (the volume grows) and rounds the bumps' base; the fitted pattern, subtracted,
 // takes the volume and the shape back to the bare sphere's. Checked against the bare sphere,
 // never against the fit's own numbers.
-#include "core/bump_pattern.h"
-#include "core/butterworth.h"
+#include "core/denoise/bump_pattern.h"
+#include "core/design/butterworth.h"
 #include "shapes.h"
 #include "run_filter.h"
 

@@ -1,7 +1,7 @@
 // The Butterworth design against its closed form 1 / (1 + (s/sc)^n), and its application to
 // meshes against the dense spectral filter.
-#include "core/butterworth.h"
-#include "core/filter.h"
+#include "core/design/butterworth.h"
+#include "core/filter/filter.h"
 #include "spectral.h"
 
 #include <gtest/gtest.h>

@@ -2,7 +2,7 @@
 // radius r scaled by G(2/r^2)), the feature from selected points equal to the one from the
 // faces over them, the region leaving everything outside it untouched, and refusals that name
 // the problem with nothing filtered.
-#include "core/point_cloud_laplace.h"
+#include "core/operators/point_cloud_laplace.h"
 #include "run_filter.h"
 #include "refusal.h"
 #include "shapes.h"

@@ -1,6 +1,6 @@
 // Several connected components: each is its own surface, filtered about its own centroid,
 // so a filter with G0 != 1 scales each part in place instead of pulling the parts together.
-#include "core/filter.h"
+#include "core/filter/filter.h"
 #include "spectral.h"
 
 #include <gtest/gtest.h>

@@ -3,10 +3,10 @@
 // mesh) and leaves everything outside the region bit for bit; a selection too large to be one
 // bump gets the same rule; a selected bump no pattern explains gets the flat lowpass. Every
 // check is against the noise-free surface the test built, never against the filter's numbers.
-#include "core/bump_pattern.h"
-#include "core/denoise.h"
-#include "core/region.h"
-#include "core/surface_measures.h"
+#include "core/denoise/bump_pattern.h"
+#include "core/denoise/denoise.h"
+#include "core/filter/region.h"
+#include "core/mesh/surface_measures.h"
 #include "run_filter.h"
 #include "shapes.h"
 

@@ -2,7 +2,7 @@
 // area-weighted RMS distance to the exact filter is below tolerance x the bounding-box
 // diagonal. Checked on an irregular real scan with the sharpest resonances, where CG needs
 // the most iterations, against the dense spectral filter.
-#include "core/filter.h"
+#include "core/filter/filter.h"
 #include "real_mesh.h"
 #include "spectral.h"
 

@@ -2,9 +2,9 @@
 // where CG on them is predicted to cost more: the result must be the dense spectral filter's
 // to the tolerance, the cost rule must keep cheap pairs on CG, and a factorisation that is
 // refused or fails must leave the pair to CG with the same accuracy, saying why.
-#include "core/butterworth.h"
-#include "core/filter.h"
-#include "core/mixed_precision_factor.h"
+#include "core/design/butterworth.h"
+#include "core/filter/filter.h"
+#include "core/solve/mixed_precision_factor.h"
 #include "exact_pairs.h"
 #include "real_mesh.h"
 #include "spectral.h"

@@ -1,4 +1,4 @@
-#include "core/feature.h"
+#include "core/feature/feature.h"
 #include "shapes.h"
 
 #include <gtest/gtest.h>

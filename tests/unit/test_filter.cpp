@@ -1,4 +1,4 @@
-#include "core/filter.h"
+#include "core/filter/filter.h"
 #include "filter_table.h"
 #include "spectral.h"
 

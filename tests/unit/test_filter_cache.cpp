@@ -1,12 +1,12 @@
 // Reuse between runs (MeshLab's Preview): a cached run must meet the same tolerance as a
 // fresh one, against the dense spectral filter, whatever was reused, including a factor
 // held at a shift other than |r|, whose error bound comes from pair_preconditioner_range.
-#include "core/butterworth.h"
-#include "core/cascade.h"
-#include "core/filter.h"
-#include "core/mesh_prep.h"
-#include "core/shifted_cholesky.h"
-#include "core/solvers.h"
+#include "core/design/butterworth.h"
+#include "core/solve/cascade.h"
+#include "core/filter/filter.h"
+#include "core/mesh/mesh_prep.h"
+#include "core/solve/shifted_cholesky.h"
+#include "core/solve/solvers.h"
 #include "real_mesh.h"
 #include "spectral.h"
 

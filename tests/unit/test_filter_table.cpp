@@ -1,6 +1,6 @@
 #include "filter_table.h"
 #include "run_filter.h"
-#include "core/denoise.h"
+#include "core/denoise/denoise.h"
 
 #include <gtest/gtest.h>
 

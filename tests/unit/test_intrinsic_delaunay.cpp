@@ -1,8 +1,8 @@
 // The intrinsic Delaunay operator: non-negative weights where the plain cotangent has
 // negative ones, the same Laplace-Beltrami limit, the same area, and nothing changed on a
 // mesh that is already Delaunay.
-#include "core/intrinsic_delaunay.h"
-#include "core/operators.h"
+#include "core/operators/intrinsic_delaunay.h"
+#include "core/operators/operators.h"
 #include "shapes.h"
 #include "spectral.h"
 

@@ -1,6 +1,6 @@
 // Bad meshes: a clear refusal, or a repair that leaves the odd parts alone.
-#include "core/filter.h"
-#include "core/mesh_prep.h"
+#include "core/filter/filter.h"
+#include "core/mesh/mesh_prep.h"
 #include "shapes.h"
 #include "run_filter.h"
 #include "spectral.h"

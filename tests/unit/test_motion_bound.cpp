@@ -1,9 +1,9 @@
 // bound_motion and its use by Denoise: a vertex the lowpass would move farther than the
 // noise could have displaced it moves exactly that far, along the same direction; every
 // other vertex keeps the lowpass's motion.
-#include "core/denoise.h"
-#include "core/motion_bound.h"
-#include "core/surface_measures.h"
+#include "core/denoise/denoise.h"
+#include "core/denoise/motion_bound.h"
+#include "core/mesh/surface_measures.h"
 #include "shapes.h"
 
 #include <gtest/gtest.h>

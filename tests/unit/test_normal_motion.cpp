@@ -1,7 +1,7 @@
 // keep_normal_motion: a smoother's sideways drift is dropped, its motion across the surface
 // kept, and no face ends up turned further than the limit from the smoother's.
-#include "core/normal_motion.h"
-#include "core/surface_measures.h"
+#include "core/denoise/normal_motion.h"
+#include "core/mesh/surface_measures.h"
 #include "shapes.h"
 
 #include <gtest/gtest.h>

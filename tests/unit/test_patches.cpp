@@ -1,9 +1,9 @@
-// Parts of a mesh (core/patches.h) and Denoise's scoring on patches of a large mesh: the
+// Parts of a mesh (core/denoise/patches.h) and Denoise's scoring on patches of a large mesh: the
 // patches' interior is where a lowpass run on them is the whole mesh's, and the lowpass
 // chosen there denoises the whole mesh as well as the one chosen on all of it.
-#include "core/denoise.h"
-#include "core/patches.h"
-#include "core/surface_measures.h"
+#include "core/denoise/denoise.h"
+#include "core/denoise/patches.h"
+#include "core/mesh/surface_measures.h"
 #include "shapes.h"
 
 #include <gtest/gtest.h>

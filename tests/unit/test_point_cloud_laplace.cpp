@@ -1,8 +1,8 @@
 // The point-cloud Laplacian: the sphere's spectrum in the mesh operator's units, the same
 // lowpass as the mesh operator on the mesh's own vertices, consistent normals, exact linear
 // precision on a plane, and refusals that name the problem.
-#include "core/filter.h"
-#include "core/point_cloud_laplace.h"
+#include "core/filter/filter.h"
+#include "core/operators/point_cloud_laplace.h"
 #include "refusal.h"
 #include "shapes.h"
 

@@ -1,4 +1,4 @@
-#include "core/filter.h"
+#include "core/filter/filter.h"
 #include "spectral.h"
 
 #include <gtest/gtest.h>

@@ -2,9 +2,9 @@
 // weight w from the edge-path distance to the selected faces (Bellman-Ford here, Dijkstra in
 // the core), the Dirichlet problem on D = {w > 0} solved by a dense generalized eigen
 // decomposition, and p_final = p + w (p' - p).
-#include "core/boundary.h"
-#include "core/filter.h"
-#include "core/region.h"
+#include "core/mesh/boundary.h"
+#include "core/filter/filter.h"
+#include "core/filter/region.h"
 #include "refusal.h"
 #include "spectral.h"
 

@@ -1,17 +1,17 @@
 // Denoise with nothing selected picks its lowpass by Stein's unbiased risk estimate with
-// degrees of freedom measured by perturbation (core/risk_estimate.h) and the noise variance
-// measured on the mesh (core/noise_variance.h). Checked against what they stand for: the
+// degrees of freedom measured by perturbation (core/denoise/risk_estimate.h) and the noise variance
+// measured on the mesh (core/denoise/noise_variance.h). Checked against what they stand for: the
 // degrees of freedom of a linear filter against the exact trace from a dense
 // eigen-decomposition, the variance and the risk against the noise added and the distance to
 // the clean mesh, and the chosen lowpass against the truth a user does not have (a clean real
 // scan, noised along its normals or in every direction).
-#include "core/denoise.h"
-#include "core/noise_direction.h"
-#include "core/noise_variance.h"
-#include "core/risk_estimate.h"
-#include "core/operators.h"
-#include "core/surface_measures.h"
-#include "core/volume.h"
+#include "core/denoise/denoise.h"
+#include "core/denoise/noise_direction.h"
+#include "core/denoise/noise_variance.h"
+#include "core/denoise/risk_estimate.h"
+#include "core/operators/operators.h"
+#include "core/mesh/surface_measures.h"
+#include "core/denoise/volume.h"
 #include "real_mesh.h"
 #include "run_filter.h"
 #include "shapes.h"

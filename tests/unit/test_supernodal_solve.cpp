@@ -1,10 +1,10 @@
 // The factored solver's own sweep over CHOLMOD's supernodal factor, against a dense Cholesky
 // solve of the same matrix: any slip in the block layout, the permutation or the order of
 // the sweeps shows as an error far above rounding.
-#include "core/laplace.h"
-#include "core/shifted_cholesky.h"
-#include "core/solvers.h"
-#include "core/supernodal_solve.h"
+#include "core/operators/laplace.h"
+#include "core/solve/shifted_cholesky.h"
+#include "core/solve/solvers.h"
+#include "core/solve/supernodal_solve.h"
 #include "shapes.h"
 
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-#include "core/transfer_function.h"
+#include "core/design/transfer_function.h"
 #include "reference_design.h"
 
 #include <gtest/gtest.h>

@@ -1,6 +1,6 @@
 // restore_volume: one offset along the normals per closed component gives it back its volume.
 // Checked on spheres, whose volume and offset have closed forms.
-#include "core/volume.h"
+#include "core/denoise/volume.h"
 #include "shapes.h"
 
 #include <gtest/gtest.h>

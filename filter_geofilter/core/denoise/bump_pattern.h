@@ -1,0 +1,64 @@
+// Removing a pattern of bumps like the one the user selected. A flat lowpass cut below the
+// bumps' size removes what varies between them, but keeps the pattern's local mean height,
+// a low-frequency offset: on a sphere covered with Gaussian bumps the lowpassed surface lies
+// above the bare sphere by up to 2.6 % in volume (docs/results.md section 4), and where the
+// bumps crowd, their tails never let the surface show the base between them. What the
+// lowpass removed, d = (input - lowpass) . n, is the pattern minus what the lowpass kept of it:
+// d = H - LP(H). The selection says what one bump looks like, so the pattern is modelled as
+// H = sum_i a_i exp(-|x - x_i|^2 / w^2): centres x_i where d peaks, heights a_i >= 0, one
+// width w. What the lowpass removes of one such bump, psi_w = phi_w - LP(phi_w), is computed
+// by the same lowpass on a patch around the selected bump, and sum_i a_i psi_w(|x - x_i|) (plus one
+// offset) is fitted to d by least squares; w is the width that best explains the selected
+// bump and its nearest peaks. Subtracting H along the normals removes the bumps and their mean
+// height; everything the model does not explain stays as it was, so detail of the surface
+// itself at the bumps' scale is kept (a lowpass would remove it too).
+#pragma once
+
+#include "core/filter/filter.h"
+#include "core/types.h"
+
+#include <vector>
+
+namespace geofilter {
+
+struct BumpPatternReport {
+    int side = 0;             // +1: the selected bump points outwards (along the normals), -1: inwards, 0: undecided
+    int candidates = 0;       // places where the removed detail peaks on the bumps' side
+    int bumps = 0;            // of those, bumps of the pattern (height at least a third of the selected one's)
+    double width = 0;         // w of the fitted Gaussian profile
+    double selected_height = 0;  // a of the selected bump
+    double removed_volume = 0;   // the integral of H over the surface
+    bool removed = false;     // false: no pattern explains the selected bump, the input was returned
+    // Area-weighted RMS of the fit's residual near the selected bump and its nearest peaks,
+    // relative to what varies there about the fitted offset.
+    double unexplained = 0;
+};
+
+
+// Selected bump's width search: w from bump_width_range[0] to [1] times the measured radius.
+constexpr double bump_width_range[2] = {0.5, 2.0};
+// A peak is a bump of the pattern when its fitted height is at least this share of the
+// selected bump's: smaller peaks are the surface's own detail, or noise, and stay.
+constexpr double bump_height_share = 1.0 / 3.0;
+// Above this share of what varies about the fitted offset within two radii of the selected
+// peak and its six nearest left unexplained, the pattern is not one of Gaussian bumps on a
+// smoother surface and nothing is subtracted. Measured (docs/results.md section 4): 0.04-0.15 on
+// the procedural spheres and torus, 0.46 on bumps of another (cosine) profile, which are still
+// mostly removed; 0.45-0.93 on the five scans with a texture of bumps, whose own detail at the
+// bumps' size is about as large as the bumps.
+constexpr double bump_max_unexplained = 0.5;
+// Nor is a selected bump lower than this share of its radius: that is a flat patch.
+constexpr double bump_min_height = 1e-3;
+
+// `lowpassed` is the lowpass `g` (applied with `options`) of `input` (same triangles) that
+// removed bumps of `bump_radius` (the selected bump's measured radius); `bump_faces` the
+// selected bump. `options` also serve the lowpass of single bumps (fields of unit height). Returns `input` with
+// the modelled pattern subtracted along the lowpassed surface's normals, or `input` itself
+// when the model leaves more than bump_max_unexplained unexplained or the selected bump is
+// lower than bump_min_height of its radius (report->removed says which). Vertices in no face
+// stay. Throws Error on an empty selection or a radius that is not a positive number.
+Points remove_bump_pattern(const Points& input, const Points& lowpassed, const Triangles& triangles,
+                           const std::vector<int>& bump_faces, double bump_radius, const TransferFunction& g,
+                           const FilterOptions& options, BumpPatternReport* report = nullptr);
+
+} // namespace geofilter

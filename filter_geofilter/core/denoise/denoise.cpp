@@ -1,0 +1,231 @@
+#include "core/denoise/denoise.h"
+#include "core/mesh/mesh_prep.h"
+#include "core/operators/operators.h"
+#include "core/denoise/patches.h"
+#include "core/mesh/surface_measures.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace geofilter {
+
+DenoiseDesign design_denoise_from_bump(const FeatureEllipsoid& bump, FeatureShape shape, int order, Operator op) {
+    const double radius = denoise_radius_factor * bump.radius;
+    const double cutoff = (shape == FeatureShape::Sphere ? 2.0 : 1.0) / (radius * radius);
+    return {design_butterworth_lowpass(cutoff, order), op, cutoff,
+            "the selected bump: cutoff radius " + format_number(radius) + " = " + format_number(denoise_radius_factor) +
+                " x its radius " + format_number(bump.radius) +
+                (shape == FeatureShape::Sphere ? " (sphere-like, s = 2/R^2)" : " (cylinder-like, s = 1/R^2)")};
+}
+
+double selected_area_share(const Points& points, const Triangles& triangles, const std::vector<int>& faces) {
+    const auto face_area = [&](Eigen::Index f) {
+        const Eigen::RowVector3d a = points.row(triangles(f, 0));
+        return 0.5 * (points.row(triangles(f, 1)) - a).cross(points.row(triangles(f, 2)) - a).norm();
+    };
+    double total = 0, selected = 0;
+    for (Eigen::Index f = 0; f < triangles.rows(); ++f) total += face_area(f);
+    std::vector<bool> counted(static_cast<size_t>(triangles.rows()), false);
+    for (int f : faces)
+        if (f >= 0 && f < triangles.rows() && !counted[static_cast<size_t>(f)]) {
+            counted[static_cast<size_t>(f)] = true;
+            selected += face_area(f);
+        }
+    return total > 0 ? selected / total : 0.0;
+}
+
+namespace {
+
+double detail_removed_at(const Points& input, const Points& lowpassed, const Triangles& triangles,
+                         const std::vector<int>& faces) {
+    const Eigen::MatrixXd normal = vertex_normals(lowpassed, triangles);
+    Eigen::VectorXd area = Eigen::VectorXd::Zero(input.rows());
+    for (int f : faces) {
+        const Eigen::RowVector3d a = lowpassed.row(triangles(f, 0));
+        const double third = (lowpassed.row(triangles(f, 1)) - a).cross(lowpassed.row(triangles(f, 2)) - a).norm() / 6;
+        for (int k = 0; k < 3; ++k) area[triangles(f, k)] += third;
+    }
+    const double total = area.sum();
+    if (!(total > 0)) return 0;
+    Eigen::VectorXd moved(input.rows());
+    for (Eigen::Index v = 0; v < input.rows(); ++v) moved[v] = (input.row(v) - lowpassed.row(v)).dot(normal.row(v));
+    const double mean = area.dot(moved) / total;
+    return std::sqrt(area.dot((moved.array() - mean).square().matrix()) / total);
+}
+
+} // namespace
+
+SelectedBumpDenoise denoise_selected_bump(const Points& input, const Points& lowpassed, const Triangles& triangles,
+                                          const std::vector<int>& bump_faces, double bump_radius,
+                                          const TransferFunction& g, const FilterOptions& options) {
+    // What the lowpass kept of the bumps is computed by the same lowpass, on fields of unit
+    // height: 1e-5 of the diagonal is far below what decides the fit.
+    FilterOptions field_options = options;
+    field_options.tolerance = std::max(options.tolerance, 1e-5);
+    field_options.progress = nullptr;
+    SelectedBumpDenoise out;
+    out.points = remove_bump_pattern(input, lowpassed, triangles, bump_faces, bump_radius, g, field_options, &out.pattern);
+    out.removed_detail = detail_removed_at(input, lowpassed, triangles, bump_faces);
+    if (out.pattern.removed) {
+        out.outcome = SelectedBumpOutcome::PatternRemoved;
+    } else if (out.removed_detail > bump_min_height * bump_radius) {
+        out.outcome = SelectedBumpOutcome::FlatLowpass;
+        out.points = lowpassed;
+    } else {
+        out.outcome = SelectedBumpOutcome::Unchanged;
+        out.points = input;
+    }
+    return out;
+}
+
+std::vector<DenoiseDesign> denoise_sampling_candidates(double mean_edge_length, int order, std::optional<Operator> op) {
+    if (!(mean_edge_length > 0) || !std::isfinite(mean_edge_length))
+        throw Error("the mesh has no edge of positive length");
+    std::vector<DenoiseDesign> out;
+    if (!op || *op == Operator::Umbrella)
+        for (double sc : denoise_umbrella_cutoffs)
+            out.push_back({design_butterworth_lowpass(sc, order), Operator::Umbrella, sc,
+                           "per-vertex frequency " + format_number(sc) + " of the umbrella operator"});
+    if (!op || *op != Operator::Umbrella)
+        for (double k : denoise_cutoff_radii) {
+            const double sc = frequency_of_radius(k * mean_edge_length);
+            const Operator geometric = op ? *op : Operator::IntrinsicDelaunay;
+            out.push_back({design_butterworth_lowpass(sc, order), geometric, sc,
+                           "features of radius " + format_number(k) + " h = " + format_number(k * mean_edge_length) +
+                               " (h the mean edge length), " + operator_name(geometric) + " operator"});
+        }
+    return out;
+}
+
+std::vector<int> search_downhill(int first, int last, const std::function<double(int)>& score) {
+    if (first >= last) return {};
+    std::vector<double> scores(static_cast<std::size_t>(last - first), 0);
+    std::vector<bool> scored(scores.size(), false);
+    std::vector<int> order;
+    const auto at = [&](int i) {
+        const auto k = static_cast<std::size_t>(i - first);
+        if (!scored[k]) {
+            scores[k] = score(i);
+            scored[k] = true;
+            order.push_back(i);
+        }
+        return scores[k];
+    };
+    int lowest = first + (last - first - 1) / 2;
+    at(lowest);
+    for (;;) {
+        int next = lowest;
+        for (int neighbour : {lowest - 1, lowest + 1})
+            if (neighbour >= first && neighbour < last && at(neighbour) < at(next)) next = neighbour;
+        if (next == lowest) return order;
+        lowest = next;
+    }
+}
+
+Points denoise_output(const Points& noisy, Points lowpassed, const Triangles& triangles, NoiseModel model,
+                      double noise_sigma, NormalMotionReport* motion, MotionBoundReport* bound,
+                      VolumeRestoreReport* volume) {
+    if (model == NoiseModel::AlongNormals) {
+        lowpassed = keep_normal_motion(noisy, lowpassed, triangles, normal_motion_max_turn_degrees, motion);
+        lowpassed = bound_motion(noisy, lowpassed, denoise_motion_bound_sigmas * noise_sigma, bound);
+    }
+    return restore_volume(noisy, lowpassed, triangles, volume);
+}
+
+SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& triangles, int order,
+                                       std::optional<Operator> op, const FilterOptions& options,
+                                       int score_on_patches_above) {
+    const auto t0 = std::chrono::steady_clock::now();
+    // Refuses a bad mesh (bad indices, NaN) with the filter's own message before measuring it.
+    const PreparedMesh usable = prepare_mesh(points, triangles);
+    const double h = mean_edge_length(usable.points, usable.triangles);
+    const std::vector<DenoiseDesign> candidates = denoise_sampling_candidates(h, order, op);
+    const double step = denoise_probe_step * h;
+    const double size = bounding_box_diagonal(points);
+
+    SamplingDenoise best;
+    best.noise = estimate_noise_direction(usable.points, usable.triangles);
+    // The variance of each noisy number: in every direction too, the noise along the normals
+    // is one of three equal axes.
+    best.variance = estimate_noise_variance(points, triangles, options);
+    const double sigma = std::sqrt(best.variance.along_normals);
+    for (const DenoiseDesign& design : candidates) best.scores.emplace_back(design, std::nullopt);
+    // What the candidates are scored on: the mesh, or patches of a large one.
+    ScoringPatches patches;
+    if (usable.points.rows() > score_on_patches_above) {
+        patches = scoring_patches(usable.triangles, usable.points, denoise_scoring_patches,
+                                  score_on_patches_above / denoise_scoring_patches, denoise_scoring_margin);
+        best.scoring_patches = patches.patches;
+    }
+    const Points& scored_points = best.scoring_patches ? patches.mesh.points : points;
+    const Triangles& scored_triangles = best.scoring_patches ? patches.mesh.triangles : triangles;
+    int chosen = -1;
+    // Progress: the scoring runs share the first 90 % (counted as if every candidate were
+    // scored: the search skips some, so the bar jumps ahead at the end), the final run the rest.
+    const double scoring_share = 0.9;
+    const int runs = 2 * static_cast<int>(candidates.size());
+    int run = 0;
+    // The runs on the input and on the perturbed input each keep their mesh for the next
+    // candidate of the same operator. The umbrella ignores the positions, so its perturbed
+    // runs share the input's cache (FilterCache rebinds the coordinates): the same factor,
+    // and CG starting from the input run's solution, a probe step away.
+    FilterCache on_input, on_perturbed;
+    const auto score_candidate = [&](int index) {
+        const DenoiseDesign& design = candidates[static_cast<std::size_t>(index)];
+        FilterOptions o = options;
+        o.op = design.op;
+        o.tolerance = std::min(options.tolerance, 1e-3 * step / size);
+        const Smoother smooth = [&](const Points& y) {
+            const bool perturbed = run % 2 == 1;
+            if (options.progress)
+                o.progress = [&, base = run](double fraction, const std::string& stage) {
+                    return options.progress(scoring_share * (base + fraction) / runs,
+                                            "Denoise: " + design.origin + (perturbed ? " (perturbed)" : "") + ": " + stage);
+                };
+            FilterCache& cache = perturbed && operator_uses_positions(design.op) ? on_perturbed : on_input;
+            Points out = apply_filter(y, scored_triangles, design.g, o, nullptr, &cache);
+            ++run;
+            return out;
+        };
+        const RiskEstimate score = estimate_risk(
+            scored_points, scored_triangles, smooth, step, denoise_probe_seed, best.noise.model, best.variance.along_normals,
+            nullptr, [&](const Points& y, const Points& f) { return denoise_output(y, f, scored_triangles, best.noise.model, sigma); },
+            patches.counted);
+        best.scores[static_cast<std::size_t>(index)].second = score;
+        best.scored_vertices = score.vertices;
+        if (chosen < 0 || score.risk < best.scores[static_cast<std::size_t>(chosen)].second->risk) chosen = index;
+        return score.risk;
+    };
+    for (std::size_t first = 0; first < candidates.size();) {
+        std::size_t last = first;
+        while (last < candidates.size() && candidates[last].op == candidates[first].op) ++last;
+        on_input.clear();
+        on_perturbed.clear();
+        search_downhill(static_cast<int>(first), static_cast<int>(last), score_candidate);
+        first = last;
+    }
+    best.design = candidates.at(static_cast<std::size_t>(chosen));
+    // A scoring run that follows another holds that run's factor or makes a new one as their
+    // measured times say, which moves its result within the tolerance; the chosen lowpass is
+    // applied once more on its own, so that the result depends on the mesh and the choice
+    // only, not on the order the search scored the candidates in or on the machine's load.
+    FilterOptions o = options;
+    o.op = best.design.op;
+    if (options.progress)
+        o.progress = [&](double fraction, const std::string& stage) {
+            return options.progress(scoring_share + (1 - scoring_share) * fraction,
+                                    "Denoise: the chosen lowpass, " + best.design.origin + ": " + stage);
+        };
+    if (best.noise.model == NoiseModel::AlongNormals) {
+        best.normal_motion.emplace();
+        best.motion_bound.emplace();
+    }
+    best.points = denoise_output(points, apply_filter(points, triangles, best.design.g, o, &best.report), triangles,
+                                 best.noise.model, sigma, best.normal_motion ? &*best.normal_motion : nullptr,
+                                 best.motion_bound ? &*best.motion_bound : nullptr, &best.volume);
+    best.report.seconds_total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return best;
+}
+
+} // namespace geofilter

@@ -1,0 +1,189 @@
+// The rules of the Denoise filter: which Butterworth lowpass, on which operator, from what
+// the user gives (a selected bump) or from the mesh alone. The constants were chosen by
+// measurement (experiments/compare_denoise.py, docs/results.md), not tuned per mesh.
+#pragma once
+
+#include "core/denoise/bump_pattern.h"
+#include "core/design/butterworth.h"
+#include "core/feature/feature.h"
+#include "core/filter/filter.h"
+#include "core/denoise/noise_direction.h"
+#include "core/denoise/motion_bound.h"
+#include "core/denoise/noise_variance.h"
+#include "core/denoise/normal_motion.h"
+#include "core/operators/operators.h"
+#include "core/denoise/risk_estimate.h"
+#include "core/denoise/volume.h"
+
+#include <cstdint>
+#include <iterator>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace geofilter {
+
+// A selected bump of radius r is one of a pattern to remove: cut at the frequency of
+// features twice its size, so bumps of that size and smaller go while the flat passband
+// keeps larger features and the volume. (Measured in docs/results.md section 4: the best
+// cutoff radius lay at 1.5-2.5x the bump's; at 3-4x the filter eats features 5-8x larger.)
+constexpr double denoise_radius_factor = 2.0;
+constexpr int denoise_order = 4;
+
+struct DenoiseDesign {
+    TransferFunction g;
+    Operator op;
+    double cutoff;       // in the operator's frequency units
+    std::string origin;  // where the cutoff came from, for the log
+};
+
+// From a measured bump (sphere-like s = 2/R^2 or cylinder-like 1/R^2 with R = 2 r).
+DenoiseDesign design_denoise_from_bump(const FeatureEllipsoid& bump, FeatureShape shape, int order, Operator op);
+
+// A selection is one bump of a pattern only while a lowpass cut at denoise_radius_factor
+// times its radius leaves the rest of the mesh's shape alone. That lowpass acts on discs of
+// denoise_radius_factor^2 = 4 times the bump's area; a selection of a quarter of the mesh's
+// area or more makes that disc the whole mesh, so the "bump" is the mesh (in MeshLab, often
+// a selection left over from another tool) and the sampling-noise rule serves it instead.
+// A bump the tests select covers 0.2-1 % of its mesh (the ball of its radius on the unit
+// sphere), far below; a leftover selection, typically half the mesh or more, far above.
+constexpr double denoise_largest_bump_share = 0.25;
+
+// The share of the mesh's area the faces cover (0 for a mesh of no area).
+double selected_area_share(const Points& points, const Triangles& triangles, const std::vector<int>& faces);
+
+// What Denoise did with a selected bump.
+enum class SelectedBumpOutcome {
+    PatternRemoved,  // the pattern of bumps like it was fitted and subtracted
+    FlatLowpass,     // no pattern explained it: the flat lowpass at its scale was kept instead
+    Unchanged,       // no pattern, and the lowpass removed no detail there: nothing to remove
+};
+
+struct SelectedBumpDenoise {
+    Points points;
+    SelectedBumpOutcome outcome = SelectedBumpOutcome::Unchanged;
+    BumpPatternReport pattern;
+    // Area-weighted RMS, about its mean, of how far the lowpass moved the selection's vertices
+    // along the normals: the detail it removed there (a curved surface's even shrinking is no detail).
+    double removed_detail = 0;
+};
+
+// Denoise's rule for one selected bump (`bump_faces`, measured radius `bump_radius`):
+// `lowpassed` is the input lowpassed by `g` (design_denoise_from_bump, applied with
+// `options`). The pattern of bumps like it is removed (remove_bump_pattern). When no pattern
+// explains the selection (mixed bumps and dents, a texture, noise as large as the bump),
+// returning the input would be a silent no-op; the flat lowpass is returned instead when it
+// removed detail at the selection higher than bump_min_height of its radius, the height
+// below which a selection is a flat patch; below that the input is returned unchanged.
+SelectedBumpDenoise denoise_selected_bump(const Points& input, const Points& lowpassed, const Triangles& triangles,
+                                          const std::vector<int>& bump_faces, double bump_radius,
+                                          const TransferFunction& g, const FilterOptions& options);
+
+// Per-vertex sampling noise with nothing selected. How much to smooth depends on the noise
+// and on the mesh (its sampling, its sharp features), so no single cutoff serves every scan:
+// measured on 16 noisy scans, the best fixed setting lost to MeshLab's default Laplacian
+// smoothing on 7. Instead a few lowpasses are tried and the one with the lowest estimated
+// risk (risk_estimate.h: the mean squared distance to the noise-free surface) is kept: the umbrella operator (per-vertex frequencies, in [0, 2],
+// whatever the edge lengths: it follows irregular sampling) cut at these frequencies, and
+// the intrinsic Delaunay cotangent operator (geometric: it follows the surface where the
+// sampling is regular) cut at features of these radii in mean edge lengths h. Intrinsic
+// Delaunay rather than the plain cotangent: at the same cutoffs it was as close to the truth
+// or closer and folded fewer faces (bunny00 at 0.3 h: 6 against 15; docs/results.md section 4).
+// The umbrella's two lowest cutoffs came with keeping only the motion along the normals: the
+// sideways drift of a strong lowpass no longer costs, and 0.25, the lowest before, was chosen
+// in 10 of the comparison's 22 cases.
+constexpr double denoise_umbrella_cutoffs[] = {0.125, 0.18, 0.25, 0.35, 0.5, 0.7, 1.0};
+constexpr double denoise_cutoff_radii[] = {0.75, 1.0, 1.5, 2.0};
+// The risk estimate's probe (risk_estimate.h): 1 % of the mean edge length, its signs
+// from a fixed seed, so that Denoise is deterministic and every candidate sees the same probe.
+constexpr double denoise_probe_step = 0.01;
+constexpr std::uint64_t denoise_probe_seed = 20261201;
+
+// The lowpasses tried: both families when `op` is not given, else that operator's (the
+// plain cotangent operator takes the same radii). Each family is consecutive, its cutoffs in
+// increasing order.
+std::vector<DenoiseDesign> denoise_sampling_candidates(double mean_edge_length, int order, std::optional<Operator> op);
+
+// Within one operator the estimated risk of the lowpasses fell steadily to its lowest cutoff
+// and rose steadily after it in every case measured (22 noisy scans, docs/results.md section 4;
+// the cross-validation score used before behaved the same), so each family is searched
+// downhill instead of scored whole: from its middle cutoff ((n - 1) / 2), the neighbours of the
+// lowest score so far are scored until neither is lower. On those scans, with nine candidates
+// then, this would score 158 of 198 and choose the same ones as scoring all.
+// `score(i)` scores candidate i of [first, last); returns the indices scored, in that order.
+std::vector<int> search_downhill(int first, int last, const std::function<double(int)>& score);
+
+// Noise along the normals of standard deviation s moves a vertex across the surface by more
+// than 3 s once in 370; where a lowpass moves one farther, it is reshaping the surface, not
+// removing noise: on the comparison's diplodocus at 0.1 mean edge lengths the lowpass moved
+// the toes' and the tail tip's vertices by up to 17 s and folded their faces.
+constexpr double denoise_motion_bound_sigmas = 3.0;
+
+// What Denoise makes of a lowpass's result on noisy points: when the noise looks along the
+// normals, only the motion along them (normal_motion.h), no longer than
+// denoise_motion_bound_sigmas standard deviations of the noise along them (`noise_sigma`);
+// then each closed component given back its volume (volume.h: the lowpass shrinks thin
+// curved parts). The candidates' risk is estimated on this, the surface Denoise returns, not
+// on the lowpass alone: along the normals the two rank differently: ranking the lowpasses
+// alone left Denoise 15-33 % farther from the truth on bunny00 at 0.3 and 0.5 mean edge
+// lengths, the man at 0.3 and the diplodocus at 0.1 (noise along the normals;
+// docs/results.md section 4).
+Points denoise_output(const Points& noisy, Points lowpassed, const Triangles& triangles, NoiseModel model,
+                      double noise_sigma, NormalMotionReport* motion = nullptr, MotionBoundReport* bound = nullptr,
+                      VolumeRestoreReport* volume = nullptr);
+
+// On a large mesh the candidates are scored on patches of it, not on all of it: the risk is a
+// mean over vertices, and the comparison's meshes, with 16k-44k vertices, chose the lowpass
+// closest to the truth from that many. Above denoise_scoring_vertices vertices in faces,
+// denoise_scoring_patches patches of denoise_scoring_vertices / denoise_scoring_patches
+// vertices each, spread over the mesh (patches.h), are scored on their vertices at least
+// denoise_scoring_margin rings inside them, where the free boundary at which a patch was cut
+// out no longer reaches: on a sphere noised by s = 0.3 mean edge lengths, the widest-reaching
+// candidates (the umbrella at 0.125, the intrinsic Delaunay operator at 2 h) differ there from
+// their run on the whole mesh by at most 0.03 s (RMS 0.003 s); 10 rings in, by up to 0.28 s
+// (unit test). The chosen lowpass then runs once on the whole mesh.
+constexpr int denoise_scoring_vertices = 100000;
+constexpr int denoise_scoring_patches = 8;
+constexpr int denoise_scoring_margin = 20;
+
+struct SamplingDenoise {
+    Points points;         // the chosen lowpass applied to the input, its motion along the normals only
+                           // when the noise looks so, closed components' volume restored
+    DenoiseDesign design;  // the chosen lowpass
+    FilterReport report;   // of the chosen lowpass's final run; seconds_total covers every candidate
+    // Every candidate, with its score when the downhill search scored it.
+    std::vector<std::pair<DenoiseDesign, std::optional<RiskEstimate>>> scores;
+    NoiseDirection noise;  // the noise model the scores assumed
+    NoiseVariance variance;  // and the noise's variance they assumed
+    std::optional<NormalMotionReport> normal_motion;  // when the noise looks along the normals
+    std::optional<MotionBoundReport> motion_bound;    // likewise
+    VolumeRestoreReport volume;
+    int scored_vertices = 0;  // the vertices the risk was a mean over
+    int scoring_patches = 0;  // 0: scored on the whole mesh, else on this many patches of it
+};
+
+// Estimates the noise's direction and variance (noise_direction.h, noise_variance.h), then
+// scores the candidates on the mesh by their estimated risk, each operator's family by
+// search_downhill, each candidate twice: on the input and on the input perturbed by 1 % of the
+// mean edge length, along the normals or on every axis as the noise looks (risk_estimate.h),
+// each run finished by denoise_output. Applies the lowest-scoring one once more on its own
+// (with options.tolerance) and finishes it the same way. Deterministic: the
+// perturbation's signs come from a fixed seed. The runs solve to 1e-3 of the perturbation or
+// to options.tolerance, whichever is tighter, so that solver error does not reach the
+// scores. Scores on patches when the mesh has more than `score_on_patches_above` vertices in
+// faces (see denoise_scoring_vertices, which it is but in tests; the patches then hold that
+// many). Throws Error like apply_filter.
+SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& triangles, int order,
+                                       std::optional<Operator> op, const FilterOptions& options,
+                                       int score_on_patches_above = denoise_scoring_vertices);
+
+// Denoise on a region: the blend band's width, in mean edge lengths, when blendWidth is auto.
+// The sampling-noise rule has no feature radius. Its geometric candidates cut at radii of at
+// most 2 mean edge lengths (denoise_cutoff_radii), so 3 spans the reach of any of them, and
+// a fade across fewer vertices would be a step. Known before the candidates are scored, so a
+// region Denoise cannot use is refused before the work.
+constexpr double denoise_blend_edges = 3.0;
+static_assert(denoise_blend_edges > denoise_cutoff_radii[std::size(denoise_cutoff_radii) - 1]);
+
+} // namespace geofilter

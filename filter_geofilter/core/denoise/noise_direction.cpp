@@ -1,0 +1,77 @@
+#include "core/denoise/noise_direction.h"
+#include "core/operators/operators.h"
+#include "core/mesh/surface_measures.h"
+
+#include <algorithm>
+#include <vector>
+
+namespace geofilter {
+
+const char* noise_model_name(NoiseModel model) {
+    return model == NoiseModel::Isotropic ? "in every direction" : "along the normals";
+}
+
+namespace {
+
+constexpr double isotropic_ratio = 2.0;
+constexpr double regular_quantile = 0.05;
+constexpr int normal_smoothing_rings = 3;  // the normals' own noise stays out of the split
+constexpr int averaging_rings = 4;
+
+double quantile(std::vector<double> values, double q) {
+    const auto k = static_cast<std::ptrdiff_t>(q * static_cast<double>(values.size() - 1));
+    std::nth_element(values.begin(), values.begin() + k, values.end());
+    return values[static_cast<std::size_t>(k)];
+}
+
+} // namespace
+
+Eigen::MatrixXd smoothed_vertex_normals(const Points& points, const Triangles& triangles) {
+    const Laplacian umbrella = umbrella_laplacian(triangles, points.rows());
+    Eigen::MatrixXd normal = vertex_normals(points, triangles);
+    for (int ring = 0; ring < normal_smoothing_rings; ++ring) {
+        normal += umbrella.mass.asDiagonal() * normal - umbrella.stiffness * normal;  // + the neighbours' sum
+        for (Eigen::Index i = 0; i < normal.rows(); ++i)
+            if (const double length = normal.row(i).norm(); length > 0) normal.row(i) /= length;
+    }
+    return normal;
+}
+
+NoiseDirection estimate_noise_direction(const Points& points, const Triangles& triangles) {
+    const Laplacian umbrella = umbrella_laplacian(triangles, points.rows());
+    const Eigen::VectorXd& degree = umbrella.mass;
+    const SparseMatrix& k = umbrella.stiffness;
+    // Neighbour sums: A x = D x - K x.
+    const auto neighbour_sum = [&](const Eigen::MatrixXd& x) -> Eigen::MatrixXd {
+        return degree.asDiagonal() * x - k * x;
+    };
+
+    const Eigen::MatrixXd normal = smoothed_vertex_normals(points, triangles);
+    const Eigen::MatrixXd offset = -(degree.cwiseMax(1.0).cwiseInverse().asDiagonal() * (k * points));
+    Eigen::MatrixXd parts(points.rows(), 2);  // squared normal and tangential parts
+    std::vector<bool> used(points.rows());
+    for (Eigen::Index i = 0; i < points.rows(); ++i) {
+        used[i] = degree[i] > 0 && normal.row(i).squaredNorm() > 0;
+        const double along = used[i] ? offset.row(i).dot(normal.row(i)) : 0.0;
+        parts(i, 0) = along * along;
+        parts(i, 1) = used[i] ? offset.row(i).squaredNorm() - along * along : 0.0;
+    }
+    for (int ring = 0; ring < averaging_rings; ++ring)
+        parts = (parts + neighbour_sum(parts)).cwiseQuotient((degree.array() + 1.0).matrix().replicate(1, 2));
+
+    std::vector<double> along, across;
+    for (Eigen::Index i = 0; i < points.rows(); ++i)
+        if (used[i]) {
+            along.push_back(parts(i, 0));
+            across.push_back(parts(i, 1));
+        }
+    NoiseDirection out;
+    if (along.empty()) return out;
+    const double normal_part = quantile(along, regular_quantile);
+    if (!(normal_part > 0)) return out;  // no noise along the normals to compare with
+    out.tangential_ratio = quantile(across, regular_quantile) / normal_part;
+    out.model = out.tangential_ratio >= isotropic_ratio ? NoiseModel::Isotropic : NoiseModel::AlongNormals;
+    return out;
+}
+
+} // namespace geofilter

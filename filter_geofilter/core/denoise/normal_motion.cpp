@@ -1,0 +1,60 @@
+#include "core/denoise/normal_motion.h"
+#include "core/mesh/surface_measures.h"
+
+#include <cmath>
+#include <vector>
+
+namespace geofilter {
+
+namespace {
+
+Eigen::RowVector3d face_normal(const Points& p, const Triangles& t, Eigen::Index f) {
+    const Eigen::RowVector3d a = p.row(t(f, 0));
+    return (p.row(t(f, 1)) - a).cross(p.row(t(f, 2)) - a);
+}
+
+} // namespace
+
+Points keep_normal_motion(const Points& input, const Points& smoothed, const Triangles& triangles,
+                          double max_turn_degrees, NormalMotionReport* report) {
+    const Eigen::MatrixXd normals = vertex_normals(smoothed, triangles);
+    Points out = smoothed;
+    std::vector<bool> projected(static_cast<std::size_t>(input.rows()), false);
+    NormalMotionReport r;
+    for (Eigen::Index v = 0; v < input.rows(); ++v) {
+        const Eigen::RowVector3d n = normals.row(v);
+        if (n.squaredNorm() == 0) continue;
+        out.row(v) = input.row(v) + (smoothed.row(v) - input.row(v)).dot(n) * n;
+        projected[static_cast<std::size_t>(v)] = true;
+    }
+
+    const double min_cos = std::cos(max_turn_degrees * 3.14159265358979323846 / 180);
+    std::vector<Eigen::RowVector3d> reference(static_cast<std::size_t>(triangles.rows()));
+    for (Eigen::Index f = 0; f < triangles.rows(); ++f) reference[static_cast<std::size_t>(f)] = face_normal(smoothed, triangles, f);
+    // A face of which every vertex is back at the smoother's position equals its reference,
+    // so each round either sends a vertex back for good or ends: at most one round per vertex.
+    for (bool turned = true; turned;) {
+        turned = false;
+        ++r.rounds;
+        std::vector<Eigen::Index> back;
+        for (Eigen::Index f = 0; f < triangles.rows(); ++f) {
+            const Eigen::RowVector3d& before = reference[static_cast<std::size_t>(f)];
+            const Eigen::RowVector3d after = face_normal(out, triangles, f);
+            const double scale = before.norm() * after.norm();
+            if (scale == 0 || after.dot(before) >= min_cos * scale) continue;
+            for (int k = 0; k < 3; ++k)
+                if (projected[static_cast<std::size_t>(triangles(f, k))]) back.push_back(triangles(f, k));
+        }
+        for (Eigen::Index v : back) {
+            if (!projected[static_cast<std::size_t>(v)]) continue;
+            projected[static_cast<std::size_t>(v)] = false;
+            out.row(v) = smoothed.row(v);
+            turned = true;
+        }
+    }
+    for (bool p : projected) (p ? r.vertices_projected : r.vertices_kept_smoothed) += 1;
+    if (report) *report = r;
+    return out;
+}
+
+} // namespace geofilter

@@ -1,0 +1,53 @@
+#include "core/denoise/risk_estimate.h"
+#include "core/mesh/surface_measures.h"
+
+#include <cmath>
+#include <random>
+
+namespace geofilter {
+
+RiskEstimate estimate_risk(const Points& y, const Triangles& triangles, const Smoother& smooth, double step,
+                           std::uint64_t seed, NoiseModel model, double noise_variance, Points* smoothed, const Finish& finish,
+                           const std::vector<bool>& counted) {
+    if (!counted.empty() && counted.size() != static_cast<size_t>(y.rows()))
+        throw Error("the risk estimate's vertex flags must number the vertices (" + std::to_string(y.rows()) + "), not " +
+                    std::to_string(counted.size()));
+    if (!(step > 0) || !std::isfinite(step))
+        throw Error("the risk estimate's probe step must be a positive number (got " + format_number(step) + ")");
+    if (!(noise_variance >= 0) || !std::isfinite(noise_variance))
+        throw Error("the noise variance must be a non-negative number (got " + format_number(noise_variance) + ")");
+    const Eigen::MatrixXd normal = vertex_normals(y, triangles);
+    std::mt19937_64 random(seed);
+    const bool isotropic = model == NoiseModel::Isotropic;
+    // Row i: the probe's direction at vertex i, +-n_i or a +-1 on each axis.
+    Eigen::MatrixXd probe(y.rows(), 3);
+    for (Eigen::Index i = 0; i < y.rows(); ++i) {
+        if (isotropic)
+            for (int k = 0; k < 3; ++k) probe(i, k) = (random() >> 63) ? 1.0 : -1.0;
+        else
+            probe.row(i) = ((random() >> 63) ? 1.0 : -1.0) * normal.row(i);
+    }
+
+    const Points perturbed = y + step * probe;
+    const Points f_raw = smooth(y);
+    const Points f_perturbed = smooth(perturbed);
+    const Points f = finish ? finish(y, f_raw) : f_raw;
+
+    RiskEstimate r;
+    double residual = 0, divergence = 0;
+    for (Eigen::Index i = 0; i < y.rows(); ++i) {
+        if (normal.row(i).squaredNorm() == 0 || (!counted.empty() && !counted[static_cast<size_t>(i)])) continue;
+        ++r.vertices;
+        residual += (y.row(i) - f.row(i)).squaredNorm();
+        divergence += probe.row(i).dot(f_perturbed.row(i) - f_raw.row(i));
+    }
+    if (r.vertices == 0) throw Error("the mesh has no face of positive area to estimate a risk on");
+    r.observations = (isotropic ? 3 : 1) * r.vertices;
+    r.residual = residual / r.vertices;
+    r.degrees_of_freedom = divergence / step;
+    r.risk = r.residual + noise_variance * (2 * r.degrees_of_freedom - r.observations) / r.vertices;
+    if (smoothed) *smoothed = f;
+    return r;
+}
+
+} // namespace geofilter

@@ -1,0 +1,106 @@
+#include "core/denoise/volume.h"
+#include "core/mesh/components.h"
+#include "core/mesh/surface_measures.h"
+
+#include <algorithm>
+#include <cmath>
+#include <tuple>
+#include <vector>
+
+namespace geofilter {
+
+namespace {
+
+// Volume, area and the closedness of each component: closed when every edge of its faces
+// is used exactly once in each direction (two consistently oriented faces).
+struct ComponentFaces {
+    std::vector<std::vector<Eigen::Index>> faces;
+    std::vector<bool> closed;
+};
+
+ComponentFaces faces_by_component(const Triangles& triangles, const std::vector<int>& component, int count) {
+    ComponentFaces out{std::vector<std::vector<Eigen::Index>>(count), std::vector<bool>(count, true)};
+    // Each directed edge as (smaller end, larger end, runs forwards): sorted, a closed
+    // surface's edges come in pairs, one each way.
+    struct DirectedEdge {
+        int low, high;
+        bool forwards;
+        bool operator<(const DirectedEdge& o) const {
+            return std::tie(low, high, forwards) < std::tie(o.low, o.high, o.forwards);
+        }
+    };
+    std::vector<DirectedEdge> edges;
+    edges.reserve(static_cast<size_t>(3 * triangles.rows()));
+    for (Eigen::Index f = 0; f < triangles.rows(); ++f) {
+        out.faces[component[triangles(f, 0)]].push_back(f);
+        for (int k = 0; k < 3; ++k) {
+            const int a = triangles(f, k), b = triangles(f, (k + 1) % 3);
+            edges.push_back({std::min(a, b), std::max(a, b), a < b});
+        }
+    }
+    std::sort(edges.begin(), edges.end());
+    for (size_t i = 0; i < edges.size();) {
+        size_t j = i;
+        while (j < edges.size() && edges[j].low == edges[i].low && edges[j].high == edges[i].high) ++j;
+        const bool one_each_way = j - i == 2 && !edges[i].forwards && edges[i + 1].forwards;
+        if (!one_each_way || edges[i].low == edges[i].high) out.closed[component[edges[i].low]] = false;
+        i = j;
+    }
+    return out;
+}
+
+double volume_of(const Points& p, const Triangles& t, const std::vector<Eigen::Index>& faces) {
+    double v = 0;
+    for (Eigen::Index f : faces) v += p.row(t(f, 0)).dot(p.row(t(f, 1)).cross(p.row(t(f, 2)))) / 6;
+    return v;
+}
+
+double area_of(const Points& p, const Triangles& t, const std::vector<Eigen::Index>& faces) {
+    double a = 0;
+    for (Eigen::Index f : faces) a += (p.row(t(f, 1)) - p.row(t(f, 0))).cross(p.row(t(f, 2)) - p.row(t(f, 0))).norm() / 2;
+    return a;
+}
+
+} // namespace
+
+Points restore_volume(const Points& input, const Points& smoothed, const Triangles& triangles,
+                      VolumeRestoreReport* report) {
+    const std::vector<int> component = connected_components(triangles, smoothed.rows());
+    const int count = component_count(component);
+    const ComponentFaces parts = faces_by_component(triangles, component, count);
+    const Eigen::MatrixXd normal = vertex_normals(smoothed, triangles);
+    std::vector<std::vector<Eigen::Index>> vertices_of(count);
+    for (Eigen::Index v = 0; v < smoothed.rows(); ++v)
+        if (normal.row(v).squaredNorm() > 0) vertices_of[component[v]].push_back(v);
+    VolumeRestoreReport r;
+    Points out = smoothed;
+    for (int c = 0; c < count; ++c) {
+        if (!parts.closed[c] || parts.faces[c].empty()) continue;
+        const double target = volume_of(input, triangles, parts.faces[c]);
+        const double area = area_of(smoothed, triangles, parts.faces[c]);
+        if (!(std::abs(target) > 0) || !(area > 0)) continue;
+        // V(t) is a cubic in the offset t: secant steps from the first-order guess
+        // (the volume grows by the area per unit of offset) converge in a few steps.
+        const std::vector<Eigen::Index>& vertices = vertices_of[c];
+        const auto volume_at = [&](double t) {
+            for (Eigen::Index v : vertices) out.row(v) = smoothed.row(v) + t * normal.row(v);
+            return volume_of(out, triangles, parts.faces[c]);
+        };
+        double t0 = 0, v0 = volume_of(smoothed, triangles, parts.faces[c]);
+        r.largest_change = std::max(r.largest_change, std::abs(v0 - target) / std::abs(target));
+        double t = (target - v0) / area, v1 = volume_at(t);
+        for (int step = 0; step < 30 && v1 != v0 && std::abs(v1 - target) > 1e-13 * std::abs(target); ++step) {
+            const double next = t + (target - v1) * (t - t0) / (v1 - v0);
+            t0 = t;
+            v0 = v1;
+            t = next;
+            v1 = volume_at(t);
+        }
+        ++r.closed_components;
+        r.largest_offset = std::max(r.largest_offset, std::abs(t));
+    }
+    if (report) *report = r;
+    return out;
+}
+
+} // namespace geofilter

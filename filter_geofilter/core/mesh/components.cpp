@@ -1,0 +1,95 @@
+#include "core/mesh/components.h"
+
+#include <algorithm>
+
+#include <numeric>
+
+namespace geofilter {
+
+namespace {
+
+class DisjointSets {
+public:
+    explicit DisjointSets(Eigen::Index count) : parent_(static_cast<size_t>(count)) {
+        std::iota(parent_.begin(), parent_.end(), 0);
+    }
+    void join(int a, int b) {
+        a = root(a);
+        b = root(b);
+        if (a != b) parent_[std::max(a, b)] = std::min(a, b);
+    }
+    // Labels 0, 1, ... in order of first appearance.
+    std::vector<int> labels() {
+        std::vector<int> label(parent_.size(), -1), root_label(parent_.size(), -1);
+        int next = 0;
+        for (size_t v = 0; v < parent_.size(); ++v) {
+            const int r = root(static_cast<int>(v));
+            if (root_label[r] < 0) root_label[r] = next++;
+            label[v] = root_label[r];
+        }
+        return label;
+    }
+
+private:
+    int root(int v) {
+        while (parent_[v] != v) {
+            parent_[v] = parent_[parent_[v]];  // path halving keeps the trees shallow
+            v = parent_[v];
+        }
+        return v;
+    }
+    std::vector<int> parent_;
+};
+
+} // namespace
+
+std::vector<int> connected_components(const Triangles& triangles, Eigen::Index vertex_count) {
+    DisjointSets sets(vertex_count);
+    for (Eigen::Index f = 0; f < triangles.rows(); ++f)
+        for (int k = 1; k < 3; ++k) sets.join(triangles(f, 0), triangles(f, k));
+    return sets.labels();
+}
+
+std::vector<int> connected_components(const SparseMatrix& coupling) {
+    DisjointSets sets(coupling.rows());
+    for (Eigen::Index col = 0; col < coupling.outerSize(); ++col)
+        for (SparseMatrix::InnerIterator it(coupling, col); it; ++it)
+            sets.join(static_cast<int>(it.row()), static_cast<int>(col));
+    return sets.labels();
+}
+
+int component_count(const std::vector<int>& labels) {
+    int count = 0;
+    for (int l : labels) count = std::max(count, l + 1);
+    return count;
+}
+
+VertexNeighbours vertex_neighbours(const Triangles& triangles, Eigen::Index vertex_count) {
+    VertexNeighbours out;
+    out.start.assign(static_cast<size_t>(vertex_count) + 1, 0);
+    for (Eigen::Index f = 0; f < triangles.rows(); ++f)
+        for (int k = 0; k < 3; ++k) out.start[static_cast<size_t>(triangles(f, k)) + 1] += 2;
+    for (size_t v = 0; v < static_cast<size_t>(vertex_count); ++v) out.start[v + 1] += out.start[v];
+    std::vector<int> all(static_cast<size_t>(out.start.back()));
+    std::vector<int> fill(out.start.begin(), out.start.end() - 1);
+    for (Eigen::Index f = 0; f < triangles.rows(); ++f)
+        for (int k = 0; k < 3; ++k) {
+            const int v = triangles(f, k);
+            all[static_cast<size_t>(fill[v]++)] = triangles(f, (k + 1) % 3);
+            all[static_cast<size_t>(fill[v]++)] = triangles(f, (k + 2) % 3);
+        }
+    // An edge shared by two faces was listed twice: keep each neighbour once.
+    out.index.reserve(all.size() / 2);
+    int row_begin = 0;
+    for (size_t v = 0; v < static_cast<size_t>(vertex_count); ++v) {
+        const auto first = all.begin() + out.start[v], last = all.begin() + out.start[v + 1];
+        std::sort(first, last);
+        out.index.insert(out.index.end(), first, std::unique(first, last));
+        out.start[v] = row_begin;
+        row_begin = static_cast<int>(out.index.size());
+    }
+    out.start[static_cast<size_t>(vertex_count)] = row_begin;
+    return out;
+}
+
+} // namespace geofilter

@@ -1,0 +1,28 @@
+// Connected components of a triangle mesh: a filter acts on each one as its own surface.
+#pragma once
+
+#include "core/types.h"
+
+#include <vector>
+
+namespace geofilter {
+
+// Component label (0, 1, ...) of every vertex, vertices joined by shared faces. A vertex in
+// no face is a component of its own. Labels are numbered in order of first appearance.
+std::vector<int> connected_components(const Triangles& triangles, Eigen::Index vertex_count);
+
+// The same for a symmetric matrix's sparsity pattern (stored entries couple their row and
+// column, whatever their value): the components of a Laplacian's vertices.
+std::vector<int> connected_components(const SparseMatrix& coupling);
+
+// Each vertex's neighbours through face edges, each once and in increasing order, as
+// compressed rows: the neighbours of v are index[start[v] .. start[v+1]).
+struct VertexNeighbours {
+    std::vector<int> start, index;
+};
+VertexNeighbours vertex_neighbours(const Triangles& triangles, Eigen::Index vertex_count);
+
+// How many labels `labels` uses.
+int component_count(const std::vector<int>& labels);
+
+} // namespace geofilter
