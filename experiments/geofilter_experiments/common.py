@@ -68,8 +68,9 @@ def current_layer(position):
 _declared = None
 
 
-def _declared_labels():
-    """Parameter labels per filter, from `meshlabserver -d` of the installed prefix."""
+def _declared_types():
+    """Parameter types per filter, in the dialog's order, from `meshlabserver -d` of the
+    installed prefix (the dump gives types and labels, not names)."""
     global _declared
     if _declared is None:
         import tempfile
@@ -77,31 +78,22 @@ def _declared_labels():
             text = h.dump_filters(d)
         _declared = {}
         for m in re.finditer(r"\\section f\d+ (.*?) \n(.*?)(?=\\section|\Z)", text, re.S):
-            _declared[m.group(1).strip()] = re.findall(r"<TR><TD> \\c \w+ +</TD> <TD> (.*?) </TD>", m.group(2))
+            _declared[m.group(1).strip()] = re.findall(r"<TR><TD> \\c (\w+) +</TD>", m.group(2))
     return _declared
 
 
 def geofilter(name, **values):
-    """The harness's GeoFilter step, restricted to the parameters the installed plugin declares.
-
-    The harness follows the source tree; the prefix in build/ may hold a plugin built from an
-    older tree with fewer parameters, and meshlabserver 2020.09 refuses a script with extra
-    ones. A parameter is dropped only when it is left at its default, so no setting is lost.
-    """
-    step = h.geofilter(name, **values)
-    labels = _declared_labels().get(name)
-    if labels is None:
+    """The harness's GeoFilter step, after checking that the installed plugin declares the
+    parameters the harness (which follows the source tree) writes: a plugin in build/ built
+    from an older tree would make meshlabserver 2020.09 abort on the script."""
+    declared = _declared_types().get(name)
+    if declared is None:
         raise SystemExit(f"the installed plugin has no filter '{name}': rebuild it (scripts/build.sh)")
-    # Every GeoFilter label is the parameter name, alone or followed by ": ...".
-    declared = {lab.split(":")[0].strip() for lab in labels}
-    kept = []
-    for p, v in step.params:
-        if p.name in declared:
-            kept.append((p, v))
-        elif v != p.default:
-            raise SystemExit(f"the installed plugin's '{name}' has no parameter {p.name}: rebuild it")
-    step.params = kept
-    return step
+    expected = [p.rich_type[len("Rich"):] for p in h.FILTERS[name]]
+    if declared != expected:
+        raise SystemExit(f"the installed plugin's '{name}' declares {declared}, this tree {expected}: rebuild it"
+                         " (scripts/build.sh)")
+    return h.geofilter(name, **values)
 
 
 def run(workdir, steps, inputs=(), outputs=(), name="script", timeout=600):

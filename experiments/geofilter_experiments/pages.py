@@ -65,9 +65,12 @@ def write_page(name, markdown, images=None, command=None):
     os.makedirs(os.path.join(PAGES, "images"), exist_ok=True)
     for file_name, source in (images or {}).items():
         shutil.copyfile(source, os.path.join(PAGES, "images", file_name))
+    body = lines[1:]
+    while body and not body[0].strip():
+        body.pop(0)
     path = os.path.join(PAGES, name + ".md")
     with open(path, "w") as out:
-        out.write("\n".join([lines[0], "", stamp(command), "", *lines[1:]]).rstrip() + "\n")
+        out.write("\n".join([lines[0], "", stamp(command), "", *body]).rstrip() + "\n")
     print(f"wrote {os.path.relpath(path, TOP)}")
     return path
 
