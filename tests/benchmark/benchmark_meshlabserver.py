@@ -1,10 +1,15 @@
 """GeoFilter against 50 steps of MeshLab's Taubin Smooth, through meshlabserver, I/O included.
 
 The mesh is diplodocus.off midpoint-subdivided twice (383,682 vertices: the size of a
-mid-sized scan), scaled to unit bounding-box diagonal, as binary PLY. Each row is the wall
-time of one `meshlabserver -i in.ply -o out.ply -s script.mlx` run (best of --repeat), so
-start-up, reading and writing count for every filter alike. Prints a Markdown table.
-Run by scripts/benchmark-meshlab.sh, which sets PYTHONPATH to the meshlabserver harness.
+mid-sized scan), scaled to unit bounding-box diagonal, with Gaussian noise of 0.3 mean edge
+lengths along the normals (what Denoise is for; the other filters' cost does not depend on
+it), as binary PLY. A run is one `meshlabserver -i in.ply -o out.ply -s script.mlx`, so
+start-up, reading and writing count for every filter alike. The rows are run in rounds, each
+round in a rotated order, so that a slow spell of the machine falls on every row alike; each
+row reports the median of its --repeat runs (at least 3) and their range, and its ratio to
+Taubin's median of the same rounds. Writes results/benchmark/meshlabserver.md and, run with the
+defaults, the page docs/results/meshlabserver.md. Run by scripts/benchmark-meshlab.sh, which
+sets PYTHONPATH to the meshlabserver harness and the experiments' page writer.
 """
 import argparse
 import os
@@ -40,6 +45,18 @@ def subdivide(v, f):
     return v, f
 
 
+def noise_along_normals(v, f, edges, seed):
+    """Gaussian offsets of `edges` mean edge lengths along the area-weighted vertex normals."""
+    n = np.zeros_like(v)
+    cross = np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]])
+    for k in range(3):
+        np.add.at(n, f[:, k], cross)
+    n /= np.maximum(np.linalg.norm(n, axis=1), 1e-300)[:, None]
+    e = np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]])
+    h = np.linalg.norm(v[e[:, 0]] - v[e[:, 1]], axis=1).mean()
+    return (edges * h * np.random.default_rng(seed).standard_normal(len(v)))[:, None] * n
+
+
 def write_ply_binary(path, v, f):
     with open(path, "wb") as out:
         out.write((f"ply\nformat binary_little_endian 1.0\nelement vertex {len(v)}\nproperty float x\n"
@@ -52,61 +69,81 @@ def write_ply_binary(path, v, f):
         out.write(faces.tobytes())
 
 
+def median(values):
+    return float(np.median(values))
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--meshes", required=True)
     ap.add_argument("--out", required=True, help="directory for the table (meshlabserver.md)")
-    ap.add_argument("--repeat", type=int, default=2)
+    ap.add_argument("--repeat", type=int, default=3, help="rounds (at least 3)")
     args = ap.parse_args()
+    if args.repeat < 3:
+        raise SystemExit("--repeat: a median needs at least 3 runs")
 
     v, f = read_off(os.path.join(args.meshes, "diplodocus.off"))
     for _ in range(2):
         v, f = subdivide(v, f)
     lo, hi = v.min(axis=0), v.max(axis=0)
     v = (v - 0.5 * (lo + hi)) / np.linalg.norm(hi - lo)
+    v = v + noise_along_normals(v, f, 0.3, seed=20261205)
 
+    tight = dict(tolerance=1e-7)
     rows = [
         ("Taubin Smooth, 50 steps (λ = 0.5, μ = -0.53)", h.Step("Taubin Smooth", [
             (h.Param("lambda", "RichFloat", 0.5), 0.5), (h.Param("mu", "RichFloat", -0.53), -0.53),
             (h.Param("stepSmoothNum", "RichInt", 10), 50), (h.Param("Selected", "RichBool", False), False)])),
-        ("GeoFilter Lowpass (25, 50, 1, 1.1, 0)", h.geofilter("GeoFilter: Lowpass", tolerance=1e-7)),
+        ("GeoFilter Lowpass (s1 25, G1 1.1)", h.geofilter("GeoFilter: Lowpass", s1=25, **tight)),
         ("GeoFilter Band Exaggeration (25, 60, 1, 3, 0.9)", h.geofilter(
-            "GeoFilter: Band Exaggeration", s1=25, s2=60, G0=1, G1=3, Ginf=0.9, tolerance=1e-7)),
+            "GeoFilter: Band Exaggeration", s1=25, s2=60, G0=1, G1=3, Ginf=0.9, **tight)),
         ("GeoFilter Notch (630, 1260, 1, 0.01, 1.1)", h.geofilter(
-            "GeoFilter: Notch", s1=630, s2=1260, G0=1, G1=0.01, Ginf=1.1, tolerance=1e-7)),
+            "GeoFilter: Notch", s1=630, s2=1260, G0=1, G1=0.01, Ginf=1.1, **tight)),
         ("GeoFilter Butterworth Lowpass (cutoff 25, order 4)", h.geofilter(
-            "GeoFilter: Butterworth Lowpass", cutoff=25, order=4, tolerance=1e-7)),
+            "GeoFilter: Butterworth Lowpass", cutoff=25, order=4, **tight)),
+        ("GeoFilter Denoise (nothing selected)", h.geofilter("GeoFilter: Denoise")),
     ]
+    times = {label: [] for label, _ in rows}
+    profile = {label: [] for label, _ in rows}
     with tempfile.TemporaryDirectory(prefix="geofilter-bench-") as work:
         mesh = os.path.join(work, "in.ply")
         write_ply_binary(mesh, v, f)
-        results = []
-        for label, step in rows:
-            best, log_time = float("inf"), ""
-            for _ in range(args.repeat):
+        for round_ in range(args.repeat):
+            for label, step in rows[round_ % len(rows):] + rows[:round_ % len(rows)]:
                 t0 = time.monotonic()
                 run = h.run_meshlabserver(work, [step], inputs=[mesh], outputs=[(os.path.join(work, "out.ply"), None)],
                                           timeout=1800)
                 seconds = time.monotonic() - t0
                 if run.returncode != 0:
                     raise SystemExit(f"{label} failed:\n{run.describe()}")
-                if seconds < best:
-                    best = seconds
-                    m = re.search(r"CG iterations.*; time ([0-9.e+-]+) s", "\n".join(run.log))
-                    log_time = m.group(1) if m else ""
-            results.append((label, best, log_time))
-            print(f"{label}: {best:.2f} s", flush=True)
-    taubin = results[0][1]
-    table = [f"diplodocus subdivided twice: {len(v):,} vertices, {len(f):,} faces, binary PLY, unit diagonal; "
-             f"meshlabserver wall time, best of {args.repeat}, I/O and start-up included.", "",
-             "| filter | meshlabserver (s) | of which the filter (s, its log) | / Taubin x50 |",
-             "|---|---:|---:|---:|"]
-    for label, seconds, log_time in results:
-        table.append(f"| {label} | {seconds:.2f} | {log_time or '—'} | {seconds / taubin:.2f} |")
+                times[label].append(seconds)
+                m = re.search(r"time ([0-9.e+-]+) s \(assembly ([0-9.e+-]+), factorisation ([0-9.e+-]+)"
+                              r"(?:, solve ([0-9.e+-]+))?", "\n".join(run.log))
+                profile[label].append((seconds, m.groups() if m else None))
+                print(f"round {round_ + 1}: {label}: {seconds:.2f} s", flush=True)
+    taubin = times[rows[0][0]]
+    reference = median(taubin)
+    table = [f"diplodocus subdivided twice: {len(v):,} vertices, {len(f):,} faces, binary PLY, unit diagonal, noise "
+             "0.3 mean edge lengths along the normals. meshlabserver wall time, I/O and start-up included; "
+             f"{args.repeat} rounds, each in a rotated order; median (range) per row.", "",
+             f"Taubin x50, the reference: median {reference:.2f} s, range {min(taubin):.2f}–{max(taubin):.2f} s "
+             f"(spread {100 * (max(taubin) - min(taubin)) / reference:.0f} % of the median).", "",
+             "| filter | meshlabserver, median (range) s | / Taubin x50 (medians) | the filter's own log, median run: "
+             "total (assembly, factorisation, solve) s |",
+             "|---|---:|---:|---|"]
+    for label, _ in rows:
+        t = times[label]
+        mid = sorted(profile[label], key=lambda x: x[0])[len(t) // 2][1]
+        log = "—" if mid is None else f"{mid[0]} ({', '.join(x for x in mid[1:] if x)})"
+        table.append(f"| {label} | {median(t):.2f} ({min(t):.2f}–{max(t):.2f}) | {median(t) / reference:.2f} | {log} |")
     os.makedirs(args.out, exist_ok=True)
     with open(os.path.join(args.out, "meshlabserver.md"), "w") as out:
         out.write("\n".join(table) + "\n")
     print("\n".join(table))
+    if args.repeat == ap.get_default("repeat"):
+        from geofilter_experiments import pages
+        pages.write_page("meshlabserver", "\n".join(["# GeoFilter against 50 Taubin steps, through meshlabserver", "",
+                                                     *table]), command="scripts/benchmark-meshlab.sh")
 
 
 if __name__ == "__main__":

@@ -61,8 +61,9 @@ class ReadBySlices(unittest.TestCase):
 
     def test_output_equals_geofilters(self):
         # highpass: G0 != 1 scales each component about its own centroid, which the ranks
-        # must agree on; lowpass: the CG pair; notch: the exact pair.
-        for preset in ("highpass", "lowpass", "notch"):
+        # must agree on; lowpass and notch: an exact pair each; butterworth: CG pairs sharing
+        # one real factor.
+        for preset in ("highpass", "lowpass", "notch", "butterworth"):
             with self.subTest(preset=preset):
                 single, p, reference, distributed = self.both(preset)
                 self.assertTrue(mpi_harness.read_by_slices(p), p.stderr)

@@ -143,11 +143,7 @@ Points apply_filter_weighted_unguarded(const Points& points, const Triangles& tr
     detail::check_filter_options(g, options);
     // As the whole-mesh filter does, even for vertices the region leaves alone: a result
     // with such a vertex is no valid mesh either.
-    for (Eigen::Index v = 0; v < n; ++v)
-        if (!points.row(v).allFinite())
-            throw Error("vertex " + std::to_string(v) +
-                        " has a NaN or infinite coordinate: remove or repair it (e.g. MeshLab's Remove Unreferenced/Duplicate"
-                        " Vertices after deleting it)");
+    check_finite_points(points);
 
     FilterReport report;
     report.solver = options.solver;

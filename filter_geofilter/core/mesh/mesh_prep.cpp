@@ -14,16 +14,20 @@ bool usable_face(const Eigen::RowVector3d& a, const Eigen::RowVector3d& b, const
     return twice_area > 1e-12 * longest2 && i != j && j != k && i != k;
 }
 
+void check_finite_points(const Points& points) {
+    for (Eigen::Index i = 0; i < points.rows(); ++i)
+        if (!points.row(i).allFinite())
+            throw Error("vertex " + std::to_string(i) +
+                        " has a NaN or infinite coordinate: remove or repair it (e.g. MeshLab's Remove Unreferenced/Duplicate"
+                        " Vertices after deleting it)");
+}
+
 PreparedMesh prepare_mesh(const Points& points, const Triangles& triangles) {
     const Eigen::Index n = points.rows();
     if (n == 0) throw Error("the mesh has no vertices");
     if (triangles.rows() == 0)
         throw Error("the mesh has no faces: GeoFilter filters triangle surfaces, not point clouds");
-    for (Eigen::Index i = 0; i < n; ++i)
-        if (!points.row(i).allFinite())
-            throw Error("vertex " + std::to_string(i) +
-                        " has a NaN or infinite coordinate: remove or repair it (e.g. MeshLab's Remove Unreferenced/Duplicate"
-                        " Vertices after deleting it)");
+    check_finite_points(points);
 
     PreparedMesh out;
     std::vector<int> compact(n, -1);

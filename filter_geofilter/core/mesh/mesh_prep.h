@@ -29,6 +29,9 @@ bool usable_face(const Eigen::RowVector3d& a, const Eigen::RowVector3d& b, const
 // Refuses: no vertices, no faces, out-of-range indices, non-finite coordinates, and a mesh
 // whose every face is degenerate. Repairs with a warning: zero-area faces are skipped and
 // vertices left without a face stay where they are.
+// Throws Error naming the first vertex with a NaN or infinite coordinate.
+void check_finite_points(const Points& points);
+
 PreparedMesh prepare_mesh(const Points& points, const Triangles& triangles);
 
 } // namespace geofilter

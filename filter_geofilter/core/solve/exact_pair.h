@@ -18,14 +18,17 @@
 namespace geofilter::detail {
 
 // What the two ways of solving a pair cost, in any one unit. The defaults are ratios to one
-// real factorisation of Kt + c I, measured on the 416k-vertex scan and the benchmark's 1M
-// meshes: one CG iteration on a pair ~0.14 of it, a complex LDL^T 1.6-3.0 (3 taken); CG needs
-// ~6.5 sqrt(high / low) iterations at the default tolerance (11, 42 and 44 measured for the
-// README's lowpass, notch and exaggeration: sqrt = 1.7, 6.5, 7.7). A solver that has timed
-// its own steps passes those instead.
+// real factorisation of Kt + c I: one CG iteration on a pair 0.09-0.13 of it (0.14 taken);
+// the exact pair, a single-precision complex LDL^T refined in double (what the adapters and
+// geofilter-mpi factorise), 1.56-1.66 with its solves (1.6 taken), both measured on the
+// 384k-vertex diplodocus, the 1M torus and the 1.1M man (medians of three alternated runs of
+// tests/benchmark/benchmark_complex_pole.cpp, the lowpass). CG needs ~6.5 sqrt(high / low)
+// iterations at the default tolerance (11, 42 and 44 measured for the lowpass, notch and
+// exaggeration on a 416k scan: sqrt = 1.7, 6.5, 7.7). A solver that has timed its own steps
+// passes those instead.
 struct PairSolveCosts {
     double real_factorization = 1.0;
-    double complex_factorization = 3.0;
+    double complex_factorization = 1.6;
     double pair_iteration = 0.14;
     // A previous CG pair solve on this mesh, to scale the iteration count from (0: none).
     int last_pair_iterations = 0;
