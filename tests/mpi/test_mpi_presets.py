@@ -24,8 +24,9 @@ import shapes
 
 RANKS = int(os.environ.get("GEOFILTER_MPI_RANKS", "2"))
 AGREEMENT = 1e-7  # of the bounding-box diagonal, at every vertex
-DENOISE_RANKS = 2  # the rank count that runs Denoise with nothing selected (see cases)
+DENOISE_RANKS = 2  # the rank count that runs Denoise with nothing selected
 BUMP_RADIUS = 0.15
+NOISE = 0.3  # Denoise's noisy sphere: Gaussian noise of this many mean edge lengths along the normals
 
 
 def references_dir():
@@ -53,12 +54,12 @@ def cases(vertices, ranks=RANKS):
     out = [(f["cli_name"], f["cli_name"], []) for f in filter_table.TABLE if f["kind"] != "Measure"]
     assert len(out) >= 9, "the filter table lost its presets"
     assert any(case[1] == "denoise" for case in out), "the filter table lost Denoise"
-    if ranks != DENOISE_RANKS:
-        # Denoise with nothing selected runs a whole filter per candidate cutoff through the
-        # distributed solver (a factorisation per candidate, 90 s at two ranks on two cores): at two
-        # ranks only. Every rank count still runs Denoise of a selected bump (below), which takes
-        # the same rank-0 path, and every preset's distributed solve.
-        out = [case for case in out if case[1] != "denoise"]
+    # Denoise with nothing selected runs a whole filter per candidate cutoff through the
+    # distributed solver (90 s on this mesh at two ranks on two cores): it runs on a smaller
+    # noisy sphere instead, at two ranks (test_denoise_of_sampling_noise_matches_geofilter).
+    # Every rank count runs Denoise of a selected bump (below), which takes the same rank-0
+    # path, and every preset's distributed solve.
+    out = [case for case in out if case[1] != "denoise"]
     ear = feature_selection(vertices)
     out += [
         ("exaggerate from a selected feature", "exaggerate", ear),
@@ -80,6 +81,19 @@ def bumpy_case(directory):
     return mesh, ["--select-sphere", ",".join(f"{x:.6f}" for x in centre) + f",{BUMP_RADIUS}"]
 
 
+def noisy_sphere(directory):
+    """An icosphere (2,562 vertices) with Gaussian noise along its normals, as a binary PLY."""
+    vertices, faces = shapes.icosphere(4)
+    vertices = np.asarray(vertices, float)
+    normals = vertices / np.linalg.norm(vertices, axis=1)[:, None]
+    edges = np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]])
+    h = np.linalg.norm(vertices[edges[:, 0]] - vertices[edges[:, 1]], axis=1).mean()
+    noise = NOISE * h * np.random.default_rng(20261205).standard_normal(len(vertices))
+    path = os.path.join(directory, "noisy_sphere.ply")
+    mpi_harness.write_binary_ply(path, vertices + noise[:, None] * normals, faces)
+    return path
+
+
 def write_references():
     """geofilter on every case of every rank count, once: the outputs and what geofilter printed."""
     directory = references_dir()
@@ -90,6 +104,7 @@ def write_references():
     bumpy, select = bumpy_case(directory)
     runs = [(name, preset, options, mesh, True) for name, preset, options in cases(vertices, DENOISE_RANKS)]
     runs += [("denoise of a selected bump", "denoise", select, bumpy, True),
+             ("denoise of sampling noise", "denoise", [], noisy_sphere(directory), True),
              ("measure", "measure", feature_selection(vertices), mesh, False)]
     printed = {}
     for name, preset, options, source, writes in runs:
@@ -163,6 +178,24 @@ class PresetsMatchGeofilter(unittest.TestCase):
         self.assertGreater(np.abs(expected - bumpy).max(), 1e3 * AGREEMENT * diagonal)
         worst = np.abs(got - expected).max() / diagonal
         print(f"denoise of a selected bump: differs by {worst:.3g} of the diagonal", file=sys.stderr)
+        self.assertLess(worst, AGREEMENT, f"differs from geofilter by {worst:.3g} of the diagonal")
+
+    @unittest.skipUnless(RANKS == DENOISE_RANKS, f"at {DENOISE_RANKS} ranks only (a whole filter per candidate)")
+    def test_denoise_of_sampling_noise_matches_geofilter(self):
+        name = "denoise of sampling noise"
+        mesh = os.path.join(self.references, "noisy_sphere.ply")
+        noisy = cli_harness.read_mesh(mesh).vertices
+        reference = os.path.join(self.references, slug(name) + ".ply")
+        distributed = os.path.join(self.dir, f"noisy_sphere_np{RANKS}.ply")
+        self.assertIn("risk estimate", self.printed[name]["stderr"])
+        p = mpi_harness.run_mpi(RANKS, "denoise", mesh, distributed)
+        self.assertEqual(p.returncode, 0, cli_harness.describe(p))
+        expected = cli_harness.read_mesh(reference).vertices
+        got = cli_harness.read_mesh(distributed).vertices
+        diagonal = float(np.linalg.norm(noisy.max(0) - noisy.min(0)))
+        self.assertGreater(np.abs(expected - noisy).max(), 1e3 * AGREEMENT * diagonal)
+        worst = np.abs(got - expected).max() / diagonal
+        print(f"denoise of sampling noise: differs by {worst:.3g} of the diagonal", file=sys.stderr)
         self.assertLess(worst, AGREEMENT, f"differs from geofilter by {worst:.3g} of the diagonal")
 
     def test_measure_reports_what_geofilter_reports(self):
