@@ -10,6 +10,8 @@ with open(os.path.join(out, "benchmark.md")) as f:
     table = f.read().strip()
 with open(os.path.join(out, "preview.md")) as f:
     preview = f.read().strip()
+with open(os.path.join(out, "clouds.md")) as f:
+    clouds = f.read().strip()
 text = f"""# The solver benchmark
 
 Meshes normalised to unit bounding-box diagonal; filters: lowpass (25, 50, 1, 1.1, 0), band
@@ -34,5 +36,13 @@ A parameter change on a mesh already filtered once (MeshLab's Preview), what the
 keeps between the two runs:
 
 {preview}
+
+## Point clouds
+
+The lowpass on each large mesh's vertices alone, as a point cloud: the cloud's Laplacian (k-d
+tree, each point's Delaunay fan in its tangent plane, k = 30), then the same filter; next to
+it the same lowpass on the mesh. Each in a process of its own (peak RSS).
+
+{clouds}
 """
 pages.write_page("benchmark", text, {"benchmark.png": os.path.join(out, "benchmark.png")}, command=command)

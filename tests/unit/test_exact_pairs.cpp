@@ -125,6 +125,26 @@ TEST(ExactPairs, TheLowpassPairAloneIsSolvedExactly) {
     EXPECT_LE(area_weighted_rms(out - spectral_filter(spectrum, m.points, g), spectrum.mass), 1e-7 * bbox_diagonal(m.points));
 }
 
+TEST(ExactPairs, InAPreviewSessionTheLowpassKeepsARealFactorForTheNextChange) {
+    // With a FilterCache the next parameter change reuses a real factor at a nearby shift;
+    // a complex factor would have to be made again. The notch still goes exact.
+    if (!exact_pair_factorization()) GTEST_SKIP() << "configured with GEOFILTER_EXACT_PAIRS=OFF";
+    const Mesh m = wavy_sheet(30);
+    const Spectrum spectrum = spectrum_of(m);
+    FilterCache cache;
+    FilterReport first, changed, notch;
+    apply_filter(m.points, m.triangles, design_second_order({25, 50, 1, 1.1, 0}), with_exact_pairs(), &first, &cache);
+    const TransferFunction g = design_second_order({27.5, 55, 1, 1.1, 0});
+    const Points out = apply_filter(m.points, m.triangles, g, with_exact_pairs(), &changed, &cache);
+    EXPECT_EQ(first.exact_pairs, 0);
+    EXPECT_EQ(changed.exact_pairs, 0);
+    EXPECT_EQ(changed.seconds_factorization, 0) << "the change should reuse the held factor";
+    EXPECT_LE(area_weighted_rms(out - spectral_filter(spectrum, m.points, g), spectrum.mass), 1e-7 * bbox_diagonal(m.points));
+    FilterCache other;
+    apply_filter(m.points, m.triangles, design_second_order({630, 1260, 1, 0.01, 1.1}), with_exact_pairs(), &notch, &other);
+    EXPECT_EQ(notch.exact_pairs, 1) << notch.exact_pair_note;
+}
+
 TEST(ExactPairs, ARefusedOrFailingFactorisationLeavesThePairToCgAndSaysWhy) {
     const Mesh m = wavy_sheet(30);
     const Spectrum spectrum = spectrum_of(m);

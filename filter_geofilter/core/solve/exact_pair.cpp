@@ -28,8 +28,8 @@ bool exact_pair_pays(const TransferFunction& g, std::complex<double> r, double s
     const double iterations = costs.last_pair_iterations > 0
                                   ? costs.last_pair_iterations * std::sqrt(condition / costs.last_pair_condition)
                                   : 6.5 * std::sqrt(condition);
-    const double cg = (real_factor_held ? 0.0 : costs.real_factorization) + iterations * costs.pair_iteration;
-    return cg > costs.complex_factorization;
+    const double cg = (real_factor_held || costs.session ? 0.0 : costs.real_factorization) + iterations * costs.pair_iteration;
+    return cg > (costs.session ? 2 : 1) * costs.complex_factorization;
 }
 
 ExactPairSolution solve_pair_exactly(ComplexShiftedFactor& factor, std::complex<double> r, const Eigen::MatrixXd& y,

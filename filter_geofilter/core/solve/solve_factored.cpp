@@ -166,6 +166,7 @@ private:
                                    : costs.pair_iteration * costs.real_factorization;
         costs.last_pair_iterations = state_.last_pair_iterations;
         costs.last_pair_condition = state_.last_pair_condition;
+        costs.session = problem_.factor_slot != nullptr;
         return costs;
     }
 
