@@ -37,10 +37,6 @@ std::string solver_used(const FilterReport& report) {
 
 double estimated_filter_bytes(Eigen::Index vertices) { return 1500.0 * static_cast<double>(vertices); }
 
-namespace {
-
-} // namespace
-
 double detail::available_memory_bytes() {
     std::ifstream meminfo("/proc/meminfo");
     std::string key;
