@@ -6,8 +6,6 @@
 #include "shapes.h"
 #include "core/design/transfer_function.h"
 
-#include <Eigen/Eigenvalues>
-
 #include <cmath>
 
 namespace geofilter::reference {
@@ -18,25 +16,19 @@ struct Spectrum {
     Eigen::VectorXd mass;
 };
 
-inline Spectrum spectrum_of(const Mesh& mesh) {
-    const Laplacian l = cotan_laplacian(mesh.points, mesh.triangles);
-    const Eigen::MatrixXd k = Eigen::MatrixXd(l.stiffness);
-    const Eigen::MatrixXd m = l.mass.asDiagonal();
-    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(k, m);
-    return {eig.eigenvalues(), eig.eigenvectors(), l.mass};
-}
+// Dense K v = lambda M v with a diagonal M: eigenvalues ascending, eigenvectors M-orthonormal.
+// Defined once in spectral.cpp because Eigen's dense eigensolver is the slowest template the
+// suites would otherwise instantiate in every test file.
+Spectrum dense_spectrum(const Eigen::MatrixXd& stiffness, const Eigen::VectorXd& mass);
+
+// Eigenvalues alone of A v = lambda B v (B symmetric positive definite, not necessarily
+// diagonal: a Ritz projection's), ascending.
+Eigen::VectorXd generalized_eigenvalues(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b);
+
+Spectrum spectrum_of(const Mesh& mesh);
 
 // Applies G about the area-weighted centroid, as apply_filter does.
-inline Points spectral_filter(const Spectrum& s, const Points& p, const TransferFunction& g) {
-    const Eigen::RowVector3d c = (s.mass.transpose() * p) / s.mass.sum();
-    const Eigen::MatrixXd centred = p.rowwise() - c;
-    Eigen::VectorXd gains(s.eigenvalues.size());
-    for (Eigen::Index i = 0; i < gains.size(); ++i) gains[i] = g(std::max(0.0, s.eigenvalues[i]));
-    const Eigen::MatrixXd modal = s.eigenvectors.transpose() * (s.mass.asDiagonal() * centred);
-    Eigen::MatrixXd out = s.eigenvectors * (gains.asDiagonal() * modal);
-    out.rowwise() += c;
-    return out;
-}
+Points spectral_filter(const Spectrum& s, const Points& p, const TransferFunction& g);
 
 // A square sheet with waves of several frequencies and a saddle: open boundary, curved, no
 // symmetry a filter could hide behind.

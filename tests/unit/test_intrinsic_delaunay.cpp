@@ -51,8 +51,7 @@ Eigen::Vector3d lowest_nonzero_eigenvalues(const Laplacian& l, const Points& poi
         const Eigen::MatrixXd g = x.transpose() * m * x;
         x = x * Eigen::MatrixXd(g.llt().matrixL()).transpose().inverse();  // M-orthonormal
     }
-    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> ritz(x.transpose() * l.stiffness * x, x.transpose() * m * x);
-    return ritz.eigenvalues();
+    return reference::generalized_eigenvalues(x.transpose() * l.stiffness * x, x.transpose() * m * x);
 }
 
 } // namespace

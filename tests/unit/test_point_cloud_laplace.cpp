@@ -5,10 +5,10 @@
 #include "core/operators/point_cloud_laplace.h"
 #include "refusal.h"
 #include "shapes.h"
+#include "spectral.h"
 
 #include <gtest/gtest.h>
 
-#include <Eigen/Eigenvalues>
 #include <Eigen/QR>
 #include <Eigen/SparseCholesky>
 
@@ -42,9 +42,7 @@ Eigen::VectorXd lowest_eigenvalues(const Laplacian& l, int count, int block, int
         const Eigen::MatrixXd q = Eigen::HouseholderQR<Eigen::MatrixXd>(y).householderQ() * Eigen::MatrixXd::Identity(n, block);
         x = sqrt_mass.cwiseInverse().asDiagonal() * q;
     }
-    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> ritz(x.transpose() * l.stiffness * x,
-                                                                   x.transpose() * m * x);
-    return ritz.eigenvalues().head(count);
+    return reference::generalized_eigenvalues(x.transpose() * l.stiffness * x, x.transpose() * m * x).head(count);
 }
 
 double rayleigh_quotient(const Laplacian& l, const Eigen::VectorXd& f) {

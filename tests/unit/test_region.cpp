@@ -10,7 +10,6 @@
 
 #include <gtest/gtest.h>
 
-#include <Eigen/Eigenvalues>
 
 #include <cmath>
 #include <cstdio>
@@ -105,11 +104,11 @@ Points reference_region_filter(const Mesh& m, const std::vector<double>& w, cons
     }
     for (Eigen::Index b = 0; b < nb; ++b) pb.row(b) = m.points.row(fixed_rows[b]);
     const Eigen::MatrixXd h = kff.ldlt().solve(-kfb * pb);
-    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(kff, Eigen::MatrixXd(mf.asDiagonal()));
+    const reference::Spectrum eig = reference::dense_spectrum(kff, mf);
     Eigen::VectorXd gains(nf);
-    for (Eigen::Index i = 0; i < nf; ++i) gains[i] = g(std::max(0.0, eig.eigenvalues()[i]));
+    for (Eigen::Index i = 0; i < nf; ++i) gains[i] = g(std::max(0.0, eig.eigenvalues[i]));
     const Eigen::MatrixXd filtered =
-        h + eig.eigenvectors() * (gains.asDiagonal() * (eig.eigenvectors().transpose() * (mf.asDiagonal() * (pf - h))));
+        h + eig.eigenvectors * (gains.asDiagonal() * (eig.eigenvectors.transpose() * (mf.asDiagonal() * (pf - h))));
     Points out = m.points;
     for (Eigen::Index a = 0; a < nf; ++a) {
         const int v = free_rows[a];
