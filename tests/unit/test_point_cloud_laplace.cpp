@@ -202,6 +202,35 @@ TEST(PointCloudLaplacian, ReproducesLinearFunctionsInsideAPlanarCloud) {
     EXPECT_GT(cloud.laplacian.mass.sum(), 0.97 * hull);
 }
 
+TEST(PointCloudLaplacian, AStraightBorderOfALatticeAddsNoSliverAcrossItsOpenSide) {
+    // A lattice of one scalene triangle, tilted and far from the origin, 1e-4 apart: what a
+    // subdivided scan's points look like. A border point's two border neighbours lie straight
+    // across it up to rounding, which alone would decide whether the open side gets a
+    // triangle of no area and cotangents of 1e11.
+    const int side = 40;
+    const double spacing = 1e-4;
+    const Eigen::Matrix3d tilt = (Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitX()) *
+                                  Eigen::AngleAxisd(0.7, Eigen::Vector3d::UnitZ())).toRotationMatrix();
+    Points p(side * side, 3);
+    for (int i = 0; i < side; ++i)
+        for (int j = 0; j < side; ++j) {
+            const Eigen::Vector3d flat(spacing * (i + 0.37 * j), spacing * j, 0.0);
+            p.row(i * side + j) = (tilt * flat + Eigen::Vector3d(0.61, -0.43, 0.87)).transpose();
+        }
+    const PointCloudLaplacian cloud = point_cloud_laplacian(p);
+    std::vector<double> weights;
+    for (Eigen::Index col = 0; col < cloud.laplacian.stiffness.outerSize(); ++col)
+        for (SparseMatrix::InnerIterator it(cloud.laplacian.stiffness, col); it; ++it)
+            if (it.row() != it.col()) weights.push_back(std::abs(it.value()));
+    std::nth_element(weights.begin(), weights.begin() + weights.size() / 2, weights.end());
+    const double median = weights[weights.size() / 2];
+    // The lattice's own weights are cotangents of its angles (here 1.2 times the median at
+    // most); a fan triangle within a degree of straight could add up to cot(1 deg) / 2 = 29.
+    EXPECT_LT(*std::max_element(weights.begin(), weights.end()), 30 * median);
+    const double hull = spacing * spacing * (side - 1) * (side - 1);  // the lattice's parallelogram
+    EXPECT_NEAR(cloud.laplacian.mass.sum() / hull, 1.0, 0.03);
+}
+
 TEST(PointCloudLaplacian, NearestNeighboursMatchABruteForceSearch) {
     std::mt19937 rng(8);
     std::uniform_real_distribution<double> u(-1.0, 1.0);

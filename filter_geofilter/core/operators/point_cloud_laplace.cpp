@@ -195,6 +195,10 @@ void orient_normals(const Points& points, const NeighbourTable& neighbours, std:
 
 double cross2(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
+// sin 1 degree: fan triangles whose angle at the centre is within a degree of 0 or 180 are
+// slivers (see append_delaunay_fan); cot 1 degree = 57 bounds the weight one of them can add.
+constexpr double kMinFanAngleSine = 0.0174524064372835;
+
 // Indices of the convex hull's vertices, counter-clockwise (Andrew's monotone chain); points on
 // a hull edge are left out.
 std::vector<int> convex_hull(const std::vector<Eigen::Vector2d>& w) {
@@ -250,7 +254,12 @@ void append_delaunay_fan(const Points& points, int centre, const NeighbourTable&
     for (size_t h = 0; hull.size() >= 2 && h < hull.size(); ++h) {
         const int a = point_of[hull[h]], b = point_of[hull[(h + 1) % hull.size()]];
         const Eigen::Vector2d &qa = projected[a], &qb = projected[b];
-        if (cross2(qa, qb) > 1e-12 * qa.norm() * qb.norm())
+        // A pair less than a degree from straight across the centre is the open side of a
+        // straight border, or of a crease folded flat by the projection: rounding decides its
+        // sign, it covers almost no area, and its cotangents are unbounded (a scan's lattice
+        // of subdivided points gave weights 1e11 times the median, which no solver survives).
+        // A pair less than a degree apart makes a sliver too.
+        if (cross2(qa, qb) > kMinFanAngleSine * qa.norm() * qb.norm())
             triangles.emplace_back(centre, neighbours(centre, a), neighbours(centre, b));
     }
     if (triangles.size() == before)
