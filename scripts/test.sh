@@ -62,7 +62,10 @@ if unshare -rn true 2>/dev/null; then
     offline=(unshare -rn)
     echo "(configured and built with no network: ${offline[*]})"
 fi
+# -O1 with line tables only: the sanitizers' reports keep file and line, and the build takes
+# about half the time of -O2 with full debug information.
 "${offline[@]}" cmake -S "$top" -B "$asan" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGEOFILTER_SANITIZE=ON \
+    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
     -DGEOFILTER_BUILD_PLUGIN=OFF -DGEOFILTER_BUILD_PYTHON=OFF -DGEOFILTER_BUILD_MPI=OFF >/dev/null
 "${offline[@]}" cmake --build "$asan" -j"$(nproc)"
 (cd "$asan" && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
