@@ -116,6 +116,10 @@ def write_script(path, steps):
     for s in steps:
         f = ET.SubElement(root, "filter", name=s.filter)
         for p, v in s.params:
+            if p.rich_type == "RichPoint3f":  # a point is written as three attributes, no value
+                ET.SubElement(f, "Param", name=p.name, type=p.rich_type, x=repr(float(v[0])), y=repr(float(v[1])),
+                              z=repr(float(v[2])))
+                continue
             e = ET.SubElement(f, "Param", name=p.name, type=p.rich_type, value=_value_text(p, v))
             if p.rich_type == "RichAbsPerc":  # the range only scales the dialog's percentage
                 e.set("min", "0")
