@@ -93,7 +93,7 @@ bool FilterGeoFilterPlugin::applyFilter(QAction *a, MeshDocument &md, const Rich
 		if (s.kind == geofilter::FilterKind::Measure) {
 			if (out.ellipsoid_mesh) addEllipsoidLayer(md, *out.ellipsoid_mesh);
 		} else {
-			bridge::storeFiltered(m->cm, mesh, out.points);
+			bridge::storeFiltered(m->cm, mesh, out.points, out.normals);
 		}
 		for (const std::string &line : out.log) Log(s.name + ": " + line);
 		return true;

@@ -122,7 +122,7 @@ std::map<std::string, QVariant> FilterGeoFilterPlugin::applyFilter(const QAction
 			if (out.feature) result = measureOutputs(*out.feature);
 			postConditionMask = MeshModel::MM_NONE;
 		} else {
-			bridge::storeFiltered(m->cm, mesh, out.points);
+			bridge::storeFiltered(m->cm, mesh, out.points, out.normals);
 			postConditionMask = MeshModel::MM_VERTCOORD | MeshModel::MM_VERTNORMAL | MeshModel::MM_FACENORMAL;
 		}
 		for (const std::string &line : out.log) log(s.name + ": " + line);

@@ -222,7 +222,10 @@ inline FilterRun runOnMesh(const FilterSpec &spec, CMeshO &cm, const RichParamet
 // Writes the filtered coordinates back. Everything is converted (and refused if it does not
 // fit the mesh's scalar type) before the first vertex moves, so a refusal leaves the mesh
 // bit-for-bit as it was.
-inline void storeFiltered(CMeshO &cm, const CoreMesh &mesh, const Points &filtered)
+// `cloud_normals`: a point cloud's normals as the filter estimated them (empty for a mesh),
+// written into the layer as MeshLab's own "Compute normals for point sets" would, so that
+// the cloud renders lit and MLS or Poisson reconstruction can follow.
+inline void storeFiltered(CMeshO &cm, const CoreMesh &mesh, const Points &filtered, const Points &cloud_normals)
 {
 	using Scalar = CMeshO::ScalarType;
 	if (filtered.rows() != mesh.points.rows())
@@ -246,6 +249,9 @@ inline void storeFiltered(CMeshO &cm, const CoreMesh &mesh, const Points &filter
 	if (cm.fn > 0) {
 		vcg::tri::UpdateNormal<CMeshO>::PerFaceNormalized(cm);
 		vcg::tri::UpdateNormal<CMeshO>::PerVertexAngleWeighted(cm);
+	} else if (cloud_normals.rows() == Eigen::Index(mesh.vertex.size())) {
+		for (size_t i = 0; i < mesh.vertex.size(); ++i)
+			for (int k = 0; k < 3; ++k) mesh.vertex[i]->N()[k] = Scalar(cloud_normals(Eigen::Index(i), k));
 	}
 }
 

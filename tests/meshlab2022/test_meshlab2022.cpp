@@ -768,6 +768,14 @@ TEST(Cloud, APointCloudLayerIsFilteredByItsOwnLaplacian)
 	bool logged = false;
 	for (const auto &l : run.log) logged = logged || l.find("point cloud: 3000 points") != std::string::npos;
 	EXPECT_TRUE(logged);
+	// The cloud had no normals: the layer gets the ones the filter estimated, oriented outward.
+	double worst = 1;
+	for (Eigen::Index i = 0; i < after.points.rows(); ++i) {
+		const auto &n = m.cm.vert[size_t(i)].cN();
+		const Eigen::Vector3d normal(double(n[0]), double(n[1]), double(n[2]));
+		worst = std::min(worst, normal.dot(cloud.points.row(i).normalized().transpose()));
+	}
+	EXPECT_GT(worst, 0.99) << "a vertex normal of the cloud layer is not its sphere's outward normal";
 }
 
 TEST(Region, QualityWeightOneIsTheWholeMeshFilterAndZeroChangesNothing)

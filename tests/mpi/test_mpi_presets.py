@@ -21,6 +21,7 @@ import cli_harness
 import filter_table
 import mpi_harness
 import shapes
+from shapes import fibonacci_sphere
 
 RANKS = int(os.environ.get("GEOFILTER_MPI_RANKS", "2"))
 AGREEMENT = 1e-7  # of the bounding-box diagonal, at every vertex
@@ -94,6 +95,14 @@ def noisy_sphere(directory):
     return path
 
 
+def noisy_cloud(directory):
+    """3,000 points on the unit sphere with 1 % radial noise and no faces, as a binary PLY."""
+    points = fibonacci_sphere(3000, 1.0) * (1 + 0.01 * np.random.default_rng(20261205).standard_normal((3000, 1)))
+    path = os.path.join(directory, "cloud.ply")
+    mpi_harness.write_binary_ply(path, points, np.zeros((0, 3), dtype=int))
+    return path
+
+
 def write_references():
     """geofilter on every case of every rank count, once: the outputs and what geofilter printed."""
     directory = references_dir()
@@ -105,6 +114,7 @@ def write_references():
     runs = [(name, preset, options, mesh, True) for name, preset, options in cases(vertices, DENOISE_RANKS)]
     runs += [("denoise of a selected bump", "denoise", select, bumpy, True),
              ("denoise of sampling noise", "denoise", [], noisy_sphere(directory), True),
+             ("lowpass of a point cloud", "lowpass", ["--radius", "0.3"], noisy_cloud(directory), True),
              ("measure", "measure", feature_selection(vertices), mesh, False)]
     printed = {}
     for name, preset, options, source, writes in runs:
@@ -195,6 +205,20 @@ class PresetsMatchGeofilter(unittest.TestCase):
         p = mpi_harness.run_mpi(RANKS, "denoise", mesh, distributed)
         self.assertEqual(p.returncode, 0, cli_harness.describe(p))
         self.assert_agrees(name, noisy, reference, distributed)
+
+    def test_a_point_cloud_matches_geofilter(self):
+        # A cloud (no faces) takes rank 0's path: its Laplacian is built there, then solved
+        # over the ranks like a mesh's.
+        name = "lowpass of a point cloud"
+        mesh = os.path.join(self.references, "cloud.ply")
+        cloud = cli_harness.read_mesh(mesh)
+        self.assertEqual(len(cloud.faces), 0)
+        self.assertIn("point cloud", self.printed[name]["stderr"] + self.printed[name]["stdout"])
+        distributed = os.path.join(self.dir, f"cloud_np{RANKS}.ply")
+        p = mpi_harness.run_mpi(RANKS, "lowpass", "--radius", "0.3", mesh, distributed)
+        self.assertEqual(p.returncode, 0, cli_harness.describe(p))
+        self.assertFalse(mpi_harness.read_by_slices(p), p.stderr)
+        self.assert_agrees(name, cloud.vertices, os.path.join(self.references, slug(name) + ".ply"), distributed)
 
     def test_measure_reports_what_geofilter_reports(self):
         ear = feature_selection(self.input)
