@@ -311,9 +311,7 @@ std::optional<Operator> cloud_operator(const FilterSpec& spec, const ParameterVa
     if (op == Operator::IntrinsicDelaunay)
         throw Error("operator = intrinsic Delaunay needs a triangle mesh; a point cloud's Laplacian is built from its"
                     " points (its local Delaunay triangles): choose Automatic or cotangent");
-    // Denoise's Automatic tries the intrinsic Delaunay family on a mesh; on a cloud its
-    // geometric family is the cloud's cotangent operator.
-    return op ? op : std::optional<Operator>(Operator::Cotangent);
+    return op;
 }
 
 // The filtering itself, for a mesh or for a cloud's surface (`cloud` set: `input` carries the
@@ -412,9 +410,11 @@ RunOutput filter_surface(const FilterSpec& spec, const ParameterValues& given, c
         out.log.push_back("Denoise: the sampling-noise rule (the lowpass chosen on the mesh by estimated risk)" +
                           (sampling_why.empty() ? std::string(", nothing selected") : ": " + sampling_why));
         const int order = order_of(spec, values);
+        // Automatic on a cloud: the umbrella family and the cloud's cotangent operator in place
+        // of the intrinsic Delaunay one, as on a mesh.
         sampled = denoise_sampling_noise(input.points, input.triangles, order,
-                                         cloud ? cloud_operator(spec, values, false)
-                                               : operator_from_values(spec, values, false),
+                                         cloud ? DenoiseOperators{cloud_operator(spec, values, false), Operator::Cotangent}
+                                               : DenoiseOperators{operator_from_values(spec, values, false)},
                                          options);
         const DenoiseDesign& d = sampled->design;
         out.op = d.op;

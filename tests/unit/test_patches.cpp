@@ -138,7 +138,7 @@ TEST(Patches, InsideTheMarginTheWidestDenoiseCandidatesMatchTheWholeMesh) {
     const ScoringPatches p = scoring_patches(clean.triangles, noisy, 4, 8000, denoise_scoring_margin);
     const ScoringPatches half = scoring_patches(clean.triangles, noisy, 4, 8000, denoise_scoring_margin / 2);
     ASSERT_EQ(p.mesh.vertex, half.mesh.vertex);
-    const std::vector<DenoiseDesign> candidates = denoise_sampling_candidates(h, denoise_order, std::nullopt);
+    const std::vector<DenoiseDesign> candidates = denoise_sampling_candidates(h, denoise_order, {});
     for (const DenoiseDesign& design : {candidates.front(), candidates.back()}) {
         SCOPED_TRACE(design.origin);
         FilterOptions o;

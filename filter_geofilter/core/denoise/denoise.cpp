@@ -79,7 +79,8 @@ SelectedBumpDenoise denoise_selected_bump(const Points& input, const Points& low
     return out;
 }
 
-std::vector<DenoiseDesign> denoise_sampling_candidates(double mean_edge_length, int order, std::optional<Operator> op) {
+std::vector<DenoiseDesign> denoise_sampling_candidates(double mean_edge_length, int order, const DenoiseOperators& operators) {
+    const std::optional<Operator>& op = operators.chosen;
     if (!(mean_edge_length > 0) || !std::isfinite(mean_edge_length))
         throw Error("the mesh has no edge of positive length");
     std::vector<DenoiseDesign> out;
@@ -90,7 +91,7 @@ std::vector<DenoiseDesign> denoise_sampling_candidates(double mean_edge_length, 
     if (!op || *op != Operator::Umbrella)
         for (double k : denoise_cutoff_radii) {
             const double sc = frequency_of_radius(k * mean_edge_length);
-            const Operator geometric = op ? *op : Operator::IntrinsicDelaunay;
+            const Operator geometric = op ? *op : operators.geometric;
             out.push_back({design_butterworth_lowpass(sc, order), geometric, sc,
                            "features of radius " + format_number(k) + " h = " + format_number(k * mean_edge_length) +
                                " (h the mean edge length), " + operator_name(geometric) + " operator"});
@@ -134,13 +135,13 @@ Points denoise_output(const Points& noisy, Points lowpassed, const Triangles& tr
 }
 
 SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& triangles, int order,
-                                       std::optional<Operator> op, const FilterOptions& options,
+                                       const DenoiseOperators& operators, const FilterOptions& options,
                                        int score_on_patches_above) {
     const auto t0 = std::chrono::steady_clock::now();
     // Refuses a bad mesh (bad indices, NaN) with the filter's own message before measuring it.
     const PreparedMesh usable = prepare_mesh(points, triangles);
     const double h = mean_edge_length(usable.points, usable.triangles);
-    const std::vector<DenoiseDesign> candidates = denoise_sampling_candidates(h, order, op);
+    const std::vector<DenoiseDesign> candidates = denoise_sampling_candidates(h, order, operators);
     const double step = denoise_probe_step * h;
     const double size = bounding_box_diagonal(points);
 

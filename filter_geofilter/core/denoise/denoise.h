@@ -100,10 +100,18 @@ constexpr double denoise_cutoff_radii[] = {0.75, 1.0, 1.5, 2.0};
 constexpr double denoise_probe_step = 0.01;
 constexpr std::uint64_t denoise_probe_seed = 20261201;
 
-// The lowpasses tried: both families when `op` is not given, else that operator's (the
-// plain cotangent operator takes the same radii). Each family is consecutive, its cutoffs in
-// increasing order.
-std::vector<DenoiseDesign> denoise_sampling_candidates(double mean_edge_length, int order, std::optional<Operator> op);
+// Which operators the candidates use: the one the user chose, or, automatically, both
+// families: the umbrella and a geometric one, the intrinsic Delaunay operator on a mesh and a
+// point cloud's own operator (the cotangent one of its fans, which cannot be flipped) on a cloud.
+struct DenoiseOperators {
+    std::optional<Operator> chosen;
+    Operator geometric = Operator::IntrinsicDelaunay;
+};
+
+// The lowpasses tried: both families unless an operator was chosen, else that operator's
+// (the plain cotangent operator takes the same radii as the geometric family). Each family is
+// consecutive, its cutoffs in increasing order.
+std::vector<DenoiseDesign> denoise_sampling_candidates(double mean_edge_length, int order, const DenoiseOperators& operators);
 
 // Within one operator the estimated risk of the lowpasses fell steadily to its lowest cutoff
 // and rose steadily after it in every case measured (22 noisy scans, docs/results.md section 4;
@@ -175,7 +183,7 @@ struct SamplingDenoise {
 // faces (see denoise_scoring_vertices, which it is but in tests; the patches then hold that
 // many). Throws Error like apply_filter.
 SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& triangles, int order,
-                                       std::optional<Operator> op, const FilterOptions& options,
+                                       const DenoiseOperators& operators, const FilterOptions& options,
                                        int score_on_patches_above = denoise_scoring_vertices);
 
 // Denoise on a region: the blend band's width, in mean edge lengths, when blendWidth is auto.
