@@ -772,7 +772,7 @@ TEST(Cloud, APointCloudLayerIsFilteredByItsOwnLaplacian)
 	double worst = 1;
 	for (Eigen::Index i = 0; i < after.points.rows(); ++i) {
 		const auto &n = m.cm.vert[size_t(i)].cN();
-		const Eigen::Vector3d normal(double(n[0]), double(n[1]), double(n[2]));
+		const Eigen::Vector3d normal{double(n[0]), double(n[1]), double(n[2])};
 		worst = std::min(worst, normal.dot(cloud.points.row(i).normalized().transpose()));
 	}
 	EXPECT_GT(worst, 0.99) << "a vertex normal of the cloud layer is not its sphere's outward normal";
