@@ -201,12 +201,8 @@ def main():
             os.makedirs(d, exist_ok=True)
             clean = c.write_and_reload(os.path.join(d, "clean.ply"), v, f)
             normals = c.vertex_normals(clean, f)
-            hm = c.mean_edge_length(clean, f)
             rng = np.random.default_rng([SEED, MESHES.index(mesh), direction == "random"])
-            if direction == "normal":
-                noise = (NOISE * hm * rng.standard_normal(len(v)))[:, None] * normals
-            else:
-                noise = NOISE * hm * rng.standard_normal((len(v), 3)) / np.sqrt(3)
+            noise = c.sampling_noise(clean, f, NOISE, direction, rng)
             cloud_in, mesh_in = os.path.join(d, "cloud.ply"), os.path.join(d, "mesh.ply")
             c.write_and_reload(cloud_in, clean + noise, np.zeros((0, 3), dtype=int))
             c.write_and_reload(mesh_in, clean + noise, f)

@@ -424,12 +424,8 @@ def main():
             d = os.path.join(work, name.replace(" ", "_"))
             os.makedirs(d, exist_ok=True)
             clean = c.write_and_reload(os.path.join(d, "clean.ply"), v, f)
-            hm = c.mean_edge_length(clean, f)
             rng = np.random.default_rng([SEED, NOISE_MESHES.index(mesh), int(k * 10), direction == "random"])
-            if direction == "normal":
-                noise = (k * hm * rng.standard_normal(len(v)))[:, None] * c.vertex_normals(clean, f)
-            else:
-                noise = k * hm * rng.standard_normal((len(v), 3)) / np.sqrt(3)
+            noise = c.sampling_noise(clean, f, k, direction, rng)
             inp = os.path.join(d, "input.ply")
             noisy = c.write_and_reload(inp, clean + noise, f)
             hn = c.mean_edge_length(noisy, f)

@@ -152,6 +152,16 @@ def mean_edge_length(v, f):
     return float(np.linalg.norm(v[e[:, 0]] - v[e[:, 1]], axis=1).mean())
 
 
+def sampling_noise(clean, f, edges_sigma, direction, rng):
+    """Gaussian per-vertex noise of `edges_sigma` mean edge lengths of the clean mesh: along its
+    vertex normals ("normal"), or in random directions ("random", the same sigma overall, a
+    third of the variance on each axis)."""
+    sigma = edges_sigma * mean_edge_length(clean, f)
+    if direction == "normal":
+        return (sigma * rng.standard_normal(len(clean)))[:, None] * vertex_normals(clean, f)
+    return sigma * rng.standard_normal((len(clean), 3)) / np.sqrt(3)
+
+
 def bbox_diagonal(v):
     return float(np.linalg.norm(v.max(0) - v.min(0)))
 
