@@ -410,19 +410,19 @@ RunOutput filter_surface(const FilterSpec& spec, const ParameterValues& given, c
         out.log.push_back("Denoise: the sampling-noise rule (the lowpass chosen on the mesh by estimated risk)" +
                           (sampling_why.empty() ? std::string(", nothing selected") : ": " + sampling_why));
         const int order = order_of(spec, values);
-        // Automatic on a cloud: the umbrella family and the cloud's cotangent operator in place
-        // of the intrinsic Delaunay one, as on a mesh.
         sampled = denoise_sampling_noise(input.points, input.triangles, order,
-                                         cloud ? DenoiseOperators{cloud_operator(spec, values, false), Operator::Cotangent}
-                                               : DenoiseOperators{operator_from_values(spec, values, false)},
+                                         cloud ? DenoiseSurface{cloud_operator(spec, values, false), true}
+                                               : DenoiseSurface{operator_from_values(spec, values, false), false},
                                          options);
         const DenoiseDesign& d = sampled->design;
         out.op = d.op;
         out.transfer = d.g;
         out.s1_used = d.cutoff;
         out.log.push_back(std::string("noise model: ") + noise_model_name(sampled->noise.model) +
-                          " (tangential / normal part of the umbrella offsets where the mesh is most regular: " +
-                          format_number(sampled->noise.tangential_ratio) + "; 2 and up: in every direction)");
+                          (cloud ? std::string(" (on a point cloud always: where a point sits along the surface is its sampling,"
+                                               " which no smoother can tell from noise)")
+                                 : " (tangential / normal part of the umbrella offsets where the mesh is most regular: " +
+                                       format_number(sampled->noise.tangential_ratio) + "; 2 and up: in every direction)"));
         const auto scored = std::count_if(sampled->scores.begin(), sampled->scores.end(),
                                           [](const auto& candidate) { return candidate.second.has_value(); });
         const double sigma = std::sqrt(sampled->variance.along_normals);
@@ -462,8 +462,10 @@ RunOutput filter_surface(const FilterSpec& spec, const ParameterValues& given, c
         if (const auto& m = sampled->normal_motion)
             out.log.push_back("motion along the normals only (the noise looks along them): " +
                               std::to_string(m->vertices_projected) + " vertices kept the lowpass's motion across the surface and not its sideways drift; " +
-                              std::to_string(m->vertices_kept_smoothed) + " kept the lowpass's position (a face turned by more than " +
-                              format_number(normal_motion_max_turn_degrees) + " degrees otherwise, or no normal)");
+                              std::to_string(m->vertices_kept_smoothed) + " kept the lowpass's position (" +
+                              (cloud ? std::string("no normal; a cloud's fans fold nothing, so none is checked for turning")
+                                     : "a face turned by more than " + format_number(normal_motion_max_turn_degrees) +
+                                           " degrees otherwise, or no normal") + ")");
         if (const auto& b = sampled->motion_bound)
             out.log.push_back("motion held within " + format_number(denoise_motion_bound_sigmas) +
                               " standard deviations of the noise (" + format_number(b->bound) + "): " +

@@ -220,7 +220,7 @@ TEST(Denoise, CandidatesLeftUnscoredScoreNoLowerThanTheChosenOne) {
             o.tolerance = std::min(o.tolerance, 1e-3 * denoise_probe_step * hn / size);
             const Smoother smooth = [&](const Points& y) { return apply_filter(y, clean.triangles, design.g, o); };
             const Finish finish = [&](const Points& y, const Points& f) {
-                return denoise_output(y, f, clean.triangles, out.noise.model, std::sqrt(out.variance.along_normals));
+                return denoise_output(y, f, clean.triangles, {}, out.noise.model, std::sqrt(out.variance.along_normals));
             };
             const double here = estimate_risk(noisy, clean.triangles, smooth, denoise_probe_step * hn,
                                               denoise_probe_seed, out.noise.model, out.variance.along_normals,

@@ -79,8 +79,8 @@ SelectedBumpDenoise denoise_selected_bump(const Points& input, const Points& low
     return out;
 }
 
-std::vector<DenoiseDesign> denoise_sampling_candidates(double mean_edge_length, int order, const DenoiseOperators& operators) {
-    const std::optional<Operator>& op = operators.chosen;
+std::vector<DenoiseDesign> denoise_sampling_candidates(double mean_edge_length, int order, const DenoiseSurface& surface) {
+    const std::optional<Operator>& op = surface.chosen;
     if (!(mean_edge_length > 0) || !std::isfinite(mean_edge_length))
         throw Error("the mesh has no edge of positive length");
     std::vector<DenoiseDesign> out;
@@ -91,7 +91,7 @@ std::vector<DenoiseDesign> denoise_sampling_candidates(double mean_edge_length, 
     if (!op || *op != Operator::Umbrella)
         for (double k : denoise_cutoff_radii) {
             const double sc = frequency_of_radius(k * mean_edge_length);
-            const Operator geometric = op ? *op : operators.geometric;
+            const Operator geometric = op ? *op : surface.point_cloud ? Operator::Cotangent : Operator::IntrinsicDelaunay;
             out.push_back({design_butterworth_lowpass(sc, order), geometric, sc,
                            "features of radius " + format_number(k) + " h = " + format_number(k * mean_edge_length) +
                                " (h the mean edge length), " + operator_name(geometric) + " operator"});
@@ -124,29 +124,33 @@ std::vector<int> search_downhill(int first, int last, const std::function<double
     }
 }
 
-Points denoise_output(const Points& noisy, Points lowpassed, const Triangles& triangles, NoiseModel model,
-                      double noise_sigma, NormalMotionReport* motion, MotionBoundReport* bound,
+Points denoise_output(const Points& noisy, Points lowpassed, const Triangles& triangles, const DenoiseSurface& surface,
+                      NoiseModel model, double noise_sigma, NormalMotionReport* motion, MotionBoundReport* bound,
                       VolumeRestoreReport* volume) {
     if (model == NoiseModel::AlongNormals) {
-        lowpassed = keep_normal_motion(noisy, lowpassed, triangles, normal_motion_max_turn_degrees, motion);
+        lowpassed = keep_normal_motion(noisy, lowpassed, triangles, surface.point_cloud ? 180 : normal_motion_max_turn_degrees, motion);
         lowpassed = bound_motion(noisy, lowpassed, denoise_motion_bound_sigmas * noise_sigma, bound);
     }
     return restore_volume(noisy, lowpassed, triangles, volume);
 }
 
 SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& triangles, int order,
-                                       const DenoiseOperators& operators, const FilterOptions& options,
+                                       const DenoiseSurface& surface, const FilterOptions& options,
                                        int score_on_patches_above) {
     const auto t0 = std::chrono::steady_clock::now();
     // Refuses a bad mesh (bad indices, NaN) with the filter's own message before measuring it.
     const PreparedMesh usable = prepare_mesh(points, triangles);
     const double h = mean_edge_length(usable.points, usable.triangles);
-    const std::vector<DenoiseDesign> candidates = denoise_sampling_candidates(h, order, operators);
+    const std::vector<DenoiseDesign> candidates = denoise_sampling_candidates(h, order, surface);
     const double step = denoise_probe_step * h;
     const double size = bounding_box_diagonal(points);
 
     SamplingDenoise best;
-    best.noise = estimate_noise_direction(usable.points, usable.triangles);
+    // A cloud's place along the surface is its sampling (DenoiseSurface).
+    if (surface.point_cloud)
+        best.noise.model = NoiseModel::AlongNormals;
+    else
+        best.noise = estimate_noise_direction(usable.points, usable.triangles);
     // The variance of each noisy number: in every direction too, the noise along the normals
     // is one of three equal axes.
     best.variance = estimate_noise_variance(points, triangles, options);
@@ -191,7 +195,7 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
         };
         const RiskEstimate score = estimate_risk(
             scored_points, scored_triangles, smooth, step, denoise_probe_seed, best.noise.model, best.variance.along_normals,
-            nullptr, [&](const Points& y, const Points& f) { return denoise_output(y, f, scored_triangles, best.noise.model, sigma); },
+            nullptr, [&](const Points& y, const Points& f) { return denoise_output(y, f, scored_triangles, surface, best.noise.model, sigma); },
             patches.counted);
         best.scores[static_cast<std::size_t>(index)].second = score;
         best.scored_vertices = score.vertices;
@@ -222,7 +226,7 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
         best.normal_motion.emplace();
         best.motion_bound.emplace();
     }
-    best.points = denoise_output(points, apply_filter(points, triangles, best.design.g, o, &best.report), triangles,
+    best.points = denoise_output(points, apply_filter(points, triangles, best.design.g, o, &best.report), triangles, surface,
                                  best.noise.model, sigma, best.normal_motion ? &*best.normal_motion : nullptr,
                                  best.motion_bound ? &*best.motion_bound : nullptr, &best.volume);
     best.report.seconds_total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

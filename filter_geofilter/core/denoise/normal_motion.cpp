@@ -33,7 +33,7 @@ Points keep_normal_motion(const Points& input, const Points& smoothed, const Tri
     for (Eigen::Index f = 0; f < triangles.rows(); ++f) reference[static_cast<std::size_t>(f)] = face_normal(smoothed, triangles, f);
     // A face of which every vertex is back at the smoother's position equals its reference,
     // so each round either sends a vertex back for good or ends: at most one round per vertex.
-    for (bool turned = true; turned;) {
+    for (bool turned = max_turn_degrees < 180; turned;) {
         turned = false;
         ++r.rounds;
         std::vector<Eigen::Index> back;
