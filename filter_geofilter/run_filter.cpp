@@ -293,12 +293,15 @@ void log_filter_report(RunOutput& out, const FilterOptions& options) {
     if (out.report.fixed_vertices > 0)
         out.log.push_back(std::to_string(out.report.fixed_vertices) + " boundary vertices kept in place (fixBoundary)");
     const FilterReport& r = out.report;
+    const bool krylov = r.krylov_steps > 0;
     out.log.push_back("solver " + solver_used(r) + ": " + std::to_string(r.active_vertices) + " vertices in " +
-                      std::to_string(r.components) + " component(s), " + std::to_string(r.iterations) +
-                      " CG iterations, accurate to " + format_number(options.tolerance) +
-                      " of the bounding-box diagonal (error bound), relative residual " + format_number(r.relative_residual) +
-                      "; time " + format_number(r.seconds_total) + " s (assembly " + format_number(r.seconds_assembly) + ", factorisation " +
-                      format_number(r.seconds_factorization) + ", solve " + format_number(r.seconds_solve) + ")");
+                      std::to_string(r.components) + " component(s), " +
+                      (krylov ? std::string() : std::to_string(r.iterations) + " CG iterations, ") + "accurate to " +
+                      format_number(options.tolerance) + " of the bounding-box diagonal (error bound)" +
+                      (krylov ? std::string() : ", relative residual " + format_number(r.relative_residual)) + "; time " +
+                      format_number(r.seconds_total) + " s (assembly " + format_number(r.seconds_assembly) +
+                      (krylov ? std::string() : ", factorisation " + format_number(r.seconds_factorization)) + ", solve " +
+                      format_number(r.seconds_solve) + ")");
     if (!r.reused.empty()) out.log.push_back("reused from the previous run on this mesh: " + r.reused);
 }
 
@@ -440,13 +443,18 @@ RunOutput filter_surface(const FilterSpec& spec, const ParameterValues& given, c
                                      std::to_string(denoise_scoring_vertices) + ")"
                                : std::string()) +
                           "; estimated mean squared distance to the noise-free surface x 1e6 (lower is better; residual, "
-                          "degrees of freedom / noisy numbers):");
-        for (const auto& [candidate, score] : sampled->scores)
+                          "degrees of freedom / noisy numbers; how the lowpass was applied):");
+        for (std::size_t i = 0; i < sampled->scores.size(); ++i) {
+            const auto& [candidate, score] = sampled->scores[i];
+            const int steps = sampled->krylov_steps[i];
             out.log.push_back("  " + candidate.origin + ": " +
                               (score ? format_number(1e6 * score->risk) + " (" + format_number(1e6 * score->residual) + ", " +
-                                           format_number(score->degrees_of_freedom / score->observations) + ")"
+                                           format_number(score->degrees_of_freedom / score->observations) + "; " +
+                                           (steps ? std::to_string(steps) + " Lanczos steps" : std::string("by solves")) + ", " +
+                                           format_number(sampled->scoring_seconds[i], 2) + " s)"
                                      : std::string("not scored (beyond a higher score)")) +
                               (candidate.origin == d.origin ? "  <- chosen" : ""));
+        }
         out.log.push_back("cutoff sc = " + format_number(d.cutoff) + " from the sampling: " + d.origin);
         out.log.push_back("design: Butterworth lowpass of order " + std::to_string(order) + ", cutoff sc = " +
                           format_number(d.cutoff) + ", operator " + operator_name(d.op));

@@ -3,6 +3,7 @@
 #include "core/mesh/components.h"
 #include "core/mesh/mesh_prep.h"
 #include "core/operators/operators.h"
+#include "core/solve/krylov_lowpass.h"
 #include "core/solve/shifted_cholesky.h"
 #include "core/solve/solvers.h"
 
@@ -27,6 +28,8 @@ const char* solver_name(Solver solver) {
 }
 
 std::string solver_used(const FilterReport& report) {
+    if (report.krylov_steps > 0)
+        return "Lanczos process (" + std::to_string(report.krylov_steps) + " steps on the umbrella operator, no factorisation)";
     std::string used = report.external_solver.empty() ? solver_name(report.solver) : report.external_solver;
     if (report.exact_pairs > 0)
         used += "; " + std::to_string(report.exact_pairs) + " complex pole pair(s) solved exactly by " +
@@ -316,6 +319,32 @@ bool rebind_coordinates(detail::MeshStage& st, const Points& points, const Trian
     return true;
 }
 
+// A lowpass on the umbrella operator through the Lanczos process (Solver::Factored's note),
+// to the solvers' own allowed error; nothing when it does not apply or did not converge in
+// a bounded number of steps (the factored solver then runs).
+std::optional<Eigen::MatrixXd> solve_by_krylov(const detail::MeshStage& st, const detail::FilterProblem& problem,
+                                               FilterReport& report) {
+    constexpr int max_steps = 500;
+    const TransferFunction& g = problem.g;
+    if (problem.options.solver != Solver::Factored || st.op != Operator::Umbrella || g.poles.empty() ||
+        std::abs(g(0) - 1) > 1e-12 || !std::isfinite(g.at_infinity()))
+        return std::nullopt;
+    for (std::size_t i = 0; i < g.poles.size(); ++i) {
+        if (g.poles[i].real() > 0 && g.poles[i].imag() == 0) return std::nullopt;
+        for (std::size_t j = 0; j < i; ++j)
+            if (std::abs(g.poles[i] - g.poles[j]) <= 1e-9 * std::abs(g.poles[i])) return std::nullopt;
+    }
+    const auto t0 = std::chrono::steady_clock::now();
+    detail::report_progress(problem.options, 0.1, "applying the lowpass by the Lanczos process");
+    KrylovReport krylov;
+    Eigen::MatrixXd solved =
+        krylov_lowpass(problem.laplacian, problem.coordinates, g, detail::allowed_error(problem), max_steps, &krylov);
+    if (!krylov.converged) return std::nullopt;
+    report.krylov_steps = krylov.iterations;
+    report.seconds_solve = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return solved;
+}
+
 Points apply_filter_unguarded(const Points& points, const Triangles& triangles, const std::vector<bool>& held,
                               const TransferFunction& g, const FilterOptions& options, FilterReport* report_out,
                               FilterCache* cache) {
@@ -389,6 +418,8 @@ Points apply_filter_unguarded(const Points& points, const Triangles& triangles, 
             }
         }
         solved = options.external_solver(handed, report);
+    } else if (std::optional<Eigen::MatrixXd> by_krylov = solve_by_krylov(st, problem, report)) {
+        solved = std::move(*by_krylov);
     } else {
         solved = options.solver == Solver::Factored ? detail::solve_factored(problem, report)
                                                     : detail::solve_jacobi_pcg(problem, report);

@@ -16,7 +16,10 @@ namespace geofilter {
 
 enum class Solver {
     // Sparse Cholesky (CHOLMOD) of K + c M for each real pole, one factor reused as the
-    // preconditioner of the complex-pole pair; independent of s1. The default.
+    // preconditioner of the complex-pole pair; independent of s1. The default. A lowpass
+    // (G(0) = 1) on the umbrella operator, whose frequencies lie in [0, 2] on any mesh, is
+    // applied by the Lanczos process instead (solve/krylov_lowpass.h): a few dozen products
+    // with K, to the same error bound, cheaper than one factorisation.
     Factored,
     // The paper's method: Jacobi-preconditioned CG on eq. 9, matrix-free. Slow for small s1.
     JacobiPcg,
@@ -94,6 +97,7 @@ struct FilterReport {
     // Set by an ExternalFactoredSolver that solved in its own way (geofilter-mpi's multigrid
     // option), so that the log does not claim a factorisation that never happened.
     std::string external_solver;
+    int krylov_steps = 0;           // > 0: solved by the Lanczos process in this many steps, no factorisation
     int exact_pairs = 0;            // complex pole pairs solved by a factorisation of Kt - r I, not CG
     std::string exact_pair_method;  // that factorisation, in words
     int exact_pair_refinements = 0; // solves with that factor beyond one per pair
