@@ -3,7 +3,6 @@
 #include "core/operators/operators.h"
 #include "core/denoise/patches.h"
 #include "core/mesh/surface_measures.h"
-#include "core/filter/krylov_filter.h"
 
 #include <algorithm>
 #include <chrono>
@@ -125,18 +124,6 @@ std::vector<int> search_downhill(int first, int last, const std::function<double
     }
 }
 
-namespace {
-
-// Which candidates are scored through the Lanczos process (denoise_krylov_max_steps).
-bool scored_by_krylov(Operator op, const FilterOptions& options) {
-    return op == Operator::Umbrella && !options.fix_boundary;
-}
-
-// A scoring run's lowpass did not converge in Krylov steps: the candidate is scored by solves.
-struct KrylovNotConverged {};
-
-} // namespace
-
 Points denoise_output(const Points& noisy, Points lowpassed, const Triangles& triangles, const DenoiseSurface& surface,
                       NoiseModel model, double noise_sigma, NormalMotionReport* motion, MotionBoundReport* bound,
                       VolumeRestoreReport* volume) {
@@ -196,6 +183,8 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
         FilterOptions o = options;
         o.op = design.op;
         o.tolerance = std::min(options.tolerance, 1e-3 * step / size);
+        const auto t_candidate = std::chrono::steady_clock::now();
+        int krylov_steps = 0;
         const Smoother smooth = [&](const Points& y) {
             const bool perturbed = run % 2 == 1;
             if (options.progress)
@@ -204,41 +193,17 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
                                             "Denoise: " + design.origin + (perturbed ? " (perturbed)" : "") + ": " + stage);
                 };
             FilterCache& cache = perturbed && operator_uses_positions(design.op) ? on_perturbed : on_input;
-            Points out = apply_filter(y, scored_triangles, design.g, o, nullptr, &cache);
+            FilterReport report;
+            Points out = apply_filter(y, scored_triangles, design.g, o, &report, &cache);
+            krylov_steps = std::max(krylov_steps, report.krylov_steps);
             ++run;
             return out;
         };
-        const auto finish = [&](const Points& y, const Points& f) {
-            return denoise_output(y, f, scored_triangles, surface, best.noise.model, sigma);
-        };
-        const auto risk_with = [&](const Smoother& smoother) {
-            return estimate_risk(scored_points, scored_triangles, smoother, step, denoise_probe_seed, best.noise.model,
-                                 best.variance.along_normals, nullptr, finish, patches.counted);
-        };
-        const auto t_candidate = std::chrono::steady_clock::now();
-        std::optional<RiskEstimate> by_krylov;
-        if (scored_by_krylov(design.op, options)) {
-            int steps = 0;
-            const int run_before = run;
-            try {
-                by_krylov = risk_with([&](const Points& y) {
-                    const std::string stage = "scoring " + design.origin;
-                    if (options.progress && !options.progress(scoring_share * run / runs, "Denoise: " + stage))
-                        throw Error("cancelled by the user while " + stage);
-                    ++run;
-                    KrylovReport report;
-                    std::optional<Points> out = krylov_filter(y, scored_triangles, design.g, design.op,
-                                                              std::min(options.tolerance, 1e-3 * step / size), denoise_krylov_max_steps, &report);
-                    if (!out) throw KrylovNotConverged{};
-                    steps = std::max(steps, report.iterations);
-                    return *out;
-                });
-                best.krylov_steps[static_cast<std::size_t>(index)] = steps;
-            } catch (const KrylovNotConverged&) {
-                run = run_before;
-            }
-        }
-        const RiskEstimate score = by_krylov ? *by_krylov : risk_with(smooth);
+        const RiskEstimate score = estimate_risk(
+            scored_points, scored_triangles, smooth, step, denoise_probe_seed, best.noise.model, best.variance.along_normals,
+            nullptr, [&](const Points& y, const Points& f) { return denoise_output(y, f, scored_triangles, surface, best.noise.model, sigma); },
+            patches.counted);
+        best.krylov_steps[static_cast<std::size_t>(index)] = krylov_steps;
         best.scoring_seconds[static_cast<std::size_t>(index)] =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - t_candidate).count();
         best.scores[static_cast<std::size_t>(index)].second = score;

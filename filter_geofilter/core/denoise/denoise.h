@@ -166,16 +166,6 @@ constexpr int denoise_scoring_vertices = 100000;
 constexpr int denoise_scoring_patches = 8;
 constexpr int denoise_scoring_margin = 20;
 
-// The umbrella's candidates are scored with their lowpass applied through the Lanczos process
-// (krylov_lowpass.h): no factorisation, only products with K, to the same tolerance as the
-// solves (its error bound). The umbrella's frequencies lie in [0, 2] on any mesh, so the
-// steps a cutoff needs are bounded whatever the mesh; a geometric operator's top frequency
-// grows as its smallest vertex area shrinks (on a subdivided scan the intrinsic Delaunay
-// candidates took 224-548 steps of three columns each, slower than the solves), so those are
-// solved. Solved too: with fixBoundary (the process runs on the free-boundary operator) and
-// where it did not converge in denoise_krylov_max_steps steps.
-constexpr int denoise_krylov_max_steps = 1000;
-
 struct SamplingDenoise {
     Points points;         // the chosen lowpass applied to the input, its motion along the normals only
                            // when the noise looks so, closed components' volume restored
@@ -183,8 +173,9 @@ struct SamplingDenoise {
     FilterReport report;   // of the chosen lowpass's final run; seconds_total covers every candidate
     // Every candidate, with its score when the downhill search scored it.
     std::vector<std::pair<DenoiseDesign, std::optional<RiskEstimate>>> scores;
-    // Per candidate: the Lanczos steps it was scored with, 0 when it was scored by solves (or
-    // not at all).
+    // Per candidate: the most Lanczos steps a scoring run took (apply_filter takes the Lanczos
+    // process for the umbrella's lowpasses), 0 when it was solved by factorisations (or not
+    // scored at all).
     std::vector<int> krylov_steps;
     std::vector<double> scoring_seconds;  // per candidate, 0 when not scored
     NoiseDirection noise;  // the noise model the scores assumed

@@ -1,7 +1,6 @@
 #include "core/denoise/noise_variance.h"
 #include "core/design/butterworth.h"
 #include "core/filter/filter_cache.h"
-#include "core/filter/krylov_filter.h"
 #include "core/mesh/surface_measures.h"
 
 #include <algorithm>
@@ -24,27 +23,17 @@ NoiseVariance estimate_noise_variance(const Points& points, const Triangles& tri
     // edge length: (F(y + h b n) - F(y)) / h is F(b n) to the solver's tolerance, set well below.
     o.tolerance = std::min(options.tolerance, 1e-4 * h / size);
     const TransferFunction finest = design_butterworth_lowpass(1.0, 4);
-    const Points probed = points + h * (sign.asDiagonal() * normal);
-    // Through the Lanczos process (krylov_filter.h: a few dozen products with K at this
-    // cutoff, to the same tolerance), solved with fixBoundary.
-    std::optional<Points> f, f_probe;
-    if (!options.fix_boundary) {
-        f = krylov_filter(points, triangles, finest, Operator::Umbrella, o.tolerance, 1000);
-        if (f) f_probe = krylov_filter(probed, triangles, finest, Operator::Umbrella, o.tolerance, 1000);
-    }
-    if (!f || !f_probe) {
-        FilterCache cache;
-        f = apply_filter(points, triangles, finest, o, nullptr, &cache);
-        f_probe = apply_filter(probed, triangles, finest, o, nullptr, &cache);
-    }
+    FilterCache cache;
+    const Points f = apply_filter(points, triangles, finest, o, nullptr, &cache);
+    const Points f_probe = apply_filter(points + h * (sign.asDiagonal() * normal), triangles, finest, o, nullptr, &cache);
 
     double squared = 0, divergence = 0, kept = 0;
     int vertices = 0;
     for (Eigen::Index i = 0; i < points.rows(); ++i) {
         if (normal.row(i).squaredNorm() == 0) continue;
         ++vertices;
-        const double residual = (points.row(i) - f->row(i)).dot(normal.row(i));
-        const double response = (f_probe->row(i) - f->row(i)).dot(normal.row(i)) / h;
+        const double residual = (points.row(i) - f.row(i)).dot(normal.row(i));
+        const double response = (f_probe.row(i) - f.row(i)).dot(normal.row(i)) / h;
         squared += residual * residual;
         divergence += sign[i] * response;
         kept += response * response;
