@@ -395,7 +395,12 @@ Points apply_filter_unguarded(const Points& points, const Triangles& triangles, 
     detail::FilterProblem problem{st.solved_laplacian(), st.solved_coordinates, g, options, st.size};
     if (cacheable) problem.factor_slot = &st.factors;
     Eigen::MatrixXd solved;
-    if (options.solver == Solver::Factored && options.external_solver) {
+    // The Lanczos process comes first, also when an external engine (geofilter-mpi) is given:
+    // it factorises nothing, so the engine has nothing to distribute, and every front end
+    // then gives the same coordinates.
+    if (std::optional<Eigen::MatrixXd> by_krylov = solve_by_krylov(st, problem, report)) {
+        solved = std::move(*by_krylov);
+    } else if (options.solver == Solver::Factored && options.external_solver) {
         FactoredProblem handed{{}, {}, g, detail::allowed_error(problem), options.max_iterations};
         // Without a cache nothing reads the solved Laplacian and coordinates after the solve:
         // the engine gets them, not copies (swapped: Eigen's sparse matrix has no move).
@@ -418,8 +423,6 @@ Points apply_filter_unguarded(const Points& points, const Triangles& triangles, 
             }
         }
         solved = options.external_solver(handed, report);
-    } else if (std::optional<Eigen::MatrixXd> by_krylov = solve_by_krylov(st, problem, report)) {
-        solved = std::move(*by_krylov);
     } else {
         solved = options.solver == Solver::Factored ? detail::solve_factored(problem, report)
                                                     : detail::solve_jacobi_pcg(problem, report);
