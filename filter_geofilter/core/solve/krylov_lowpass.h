@@ -1,6 +1,6 @@
 // A lowpass applied through the Lanczos process instead of factorisations: only products with
-// K, as many as the spectrum the coordinates actually reach needs. Denoise scores its
-// candidate lowpasses this way, where each exact run would cost a factorisation.
+// K, as many as the spectrum the coordinates actually reach needs. apply_filter takes it for
+// the umbrella operator, whose frequencies lie in [0, 2] on any mesh.
 #pragma once
 
 #include "core/design/transfer_function.h"
@@ -28,7 +28,11 @@ struct KrylovReport {
 // in b exactly, so the bound needs only cover the part removed. The basis is then made a
 // second time to sum the result, so memory stays a few columns. Rows of zero mass are left
 // as they are. Without convergence in `max_steps` steps, returns `values` as given and says
-// so in the report. Throws Error when G does not qualify.
+// so in the report. Throws Error when G does not qualify (krylov_lowpass_applies).
+// Whether krylov_lowpass takes G: G(0) = 1, finite at infinity, at least one pole, the poles
+// simple and none on s >= 0.
+bool krylov_lowpass_applies(const TransferFunction& g);
+
 Eigen::MatrixXd krylov_lowpass(const Laplacian& laplacian, const Eigen::MatrixXd& values, const TransferFunction& g,
                                double allowed_error, int max_steps = 2000, KrylovReport* report = nullptr);
 
