@@ -431,7 +431,13 @@ RunOutput filter_surface(const FilterSpec& spec, const ParameterValues& given, c
         const double sigma = std::sqrt(sampled->variance.along_normals);
         out.log.push_back("noise along the normals: standard deviation " + format_number(sigma) + " = " +
                           format_number(sigma / mean_edge_length(input.points, input.triangles)) +
-                          " mean edge lengths (from what the umbrella lowpass at frequency 1 removes along them)");
+                          " mean edge lengths on average (from what the umbrella lowpass at frequency 1 removes along"
+                          " them, per vertex over its " + std::to_string(noise_neighbourhood_vertices) + " nearest)");
+        if (sampled->impulses > 0)
+            out.log.push_back("impulses: " + std::to_string(sampled->impulses) + " vertices stood more than " +
+                              format_number(denoise_impulse_sigmas) + " standard deviations of their noise out of the surface,"
+                              " and " + format_number(denoise_impulse_alone) +
+                              " times farther than any neighbour: put back on the finest band's lowpass first");
         out.log.push_back(std::string("risk estimate ") + (sampling_why.empty() ? "(nothing selected)" : "(on the whole mesh)") +
                           ": " + std::to_string(scored) + " of " +
                           std::to_string(sampled->scores.size()) +
@@ -453,18 +459,29 @@ RunOutput filter_surface(const FilterSpec& spec, const ParameterValues& given, c
                                            (steps ? std::to_string(steps) + " Lanczos steps" : std::string("by solves")) + ", " +
                                            format_number(sampled->scoring_seconds[i], 2) + " s)"
                                      : std::string("not scored (beyond a higher score)")) +
-                              (candidate.origin == d.origin ? "  <- chosen" : ""));
+                              (candidate.origin == d.origin && !sampled->input_kept ? "  <- chosen" : ""));
         }
-        out.log.push_back("cutoff sc = " + format_number(d.cutoff) + " from the sampling: " + d.origin);
-        out.log.push_back("design: Butterworth lowpass of order " + std::to_string(order) + ", cutoff sc = " +
-                          format_number(d.cutoff) + ", operator " + operator_name(d.op));
-        log_response(spec, values, out);
+        out.log.push_back("  leaving the mesh as it is (the noise's own variance): " + format_number(1e6 * sampled->input_risk) +
+                          (sampled->input_kept ? "  <- chosen" : ""));
+        if (sampled->input_kept) {
+            const std::string why = "no lowpass scored below leaving the mesh as it is: the noise (" + format_number(sigma) +
+                                    " along the normals) is smaller than what the mildest of them would take of the"
+                                    " surface's own shape, so the mesh was left unchanged";
+            out.report.warnings.push_back(why);
+        } else {
+            out.log.push_back("cutoff sc = " + format_number(d.cutoff) + " from the sampling: " + d.origin);
+            out.log.push_back("design: Butterworth lowpass of order " + std::to_string(order) + ", cutoff sc = " +
+                              format_number(d.cutoff) + ", operator " + operator_name(d.op));
+            log_response(spec, values, out);
+        }
     } else {
         if (cloud) cloud_operator(spec, values, feature.has_value());  // refuses intrinsic Delaunay
         out = design_run(spec, values, feature);
     }
     options.op = out.op;
-    if (sampled) {
+    if (sampled && sampled->input_kept) {
+        out.points = input.points;
+    } else if (sampled) {
         out.points = std::move(sampled->points);
         out.report = sampled->report;
         if (const auto& m = sampled->normal_motion)
@@ -550,7 +567,11 @@ RunOutput filter_surface(const FilterSpec& spec, const ParameterValues& given, c
         out.points = filter_region(region, value_of(spec, values, param::blend_width), input, out.transfer, options,
                                    s_feature, shape_of(spec, values), out.report, out.log);
     }
-    log_filter_report(out, options);
+    if (sampled && sampled->input_kept) {
+        for (const auto& w : out.report.warnings) out.log.push_back("warning: " + w);
+    } else {
+        log_filter_report(out, options);
+    }
     // Whatever made them, a front end writes these coordinates: none may hand on a broken mesh.
     require_finite_output(out.points);
     return out;

@@ -85,10 +85,10 @@ class DenoiseTest(unittest.TestCase):
         m = re.search(r"risk estimate \(nothing selected\): ([0-9]+) of ([0-9]+) lowpasses scored", log)
         self.assertIsNotNone(m, run.describe())
         scored, candidates = int(m.group(1)), int(m.group(2))
-        # Every candidate is listed, scored or not, the umbrella's seven cutoffs and the intrinsic
-        # Delaunay's four; the downhill search skips at least one.
+        # Every candidate is listed, scored or not, the umbrella's eight cutoffs and the intrinsic
+        # Delaunay's five; the downhill search skips at least one.
         listed = [line for line in run.log if re.search(r": {3}(per-vertex frequency|features of radius) ", line)]
-        self.assertEqual(candidates, 11, log)
+        self.assertEqual(candidates, 13, log)
         self.assertEqual(len(listed), candidates, log)
         self.assertEqual(sum("not scored" not in line for line in listed), scored, log)
         self.assertLess(scored, candidates, log)

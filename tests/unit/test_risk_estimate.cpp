@@ -68,7 +68,7 @@ TEST(RiskEstimate, DegreesOfFreedomOfALinearFilterAreItsTrace) {
             double mean = 0;
             const int probes = 16;
             for (int seed = 1; seed <= probes; ++seed)
-                mean += estimate_risk(m.points, m.triangles, smooth, 1e-4, seed, model, 0.0).degrees_of_freedom /
+                mean += estimate_risk(m.points, m.triangles, smooth, 1e-4, seed, model, Eigen::VectorXd::Zero(m.points.rows())).degrees_of_freedom /
                         probes;
             EXPECT_NEAR(mean, trace, 4 * std::sqrt(2 * trace / probes)) << "trace " << trace;
             EXPECT_GT(trace, 100);  // the bound above is then well under the trace itself
@@ -81,21 +81,23 @@ TEST(RiskEstimate, DegreesOfFreedomOfALinearFilterAreItsTrace) {
 TEST(RiskEstimate, ExtremeSmoothersScoreAsTheFormulaSays) {
     const Mesh m = icosphere(2, 1.0);
     const Smoother identity = [](const Points& y) { return y; };
-    const double s2 = 0.01;
+    const Eigen::VectorXd s2 = Eigen::VectorXd::Constant(m.points.rows(), 0.01);
     const RiskEstimate along = estimate_risk(m.points, m.triangles, identity, 1e-3, 1, NoiseModel::AlongNormals, s2);
     EXPECT_NEAR(along.degrees_of_freedom, m.points.rows(), 1e-6 * m.points.rows());
     EXPECT_EQ(along.observations, m.points.rows());
-    EXPECT_NEAR(along.risk, s2, 1e-9);
+    EXPECT_NEAR(along.risk, 0.01, 1e-9);
+    EXPECT_NEAR(along.unchanged, 0.01, 1e-15);
     const RiskEstimate every_way = estimate_risk(m.points, m.triangles, identity, 1e-3, 1, NoiseModel::Isotropic, s2);
     EXPECT_NEAR(every_way.degrees_of_freedom, 3 * m.points.rows(), 1e-6 * m.points.rows());
     EXPECT_EQ(every_way.observations, 3 * m.points.rows());
-    EXPECT_NEAR(every_way.risk, 3 * s2, 1e-9);
+    EXPECT_NEAR(every_way.risk, 3 * 0.01, 1e-9);
+    EXPECT_NEAR(every_way.unchanged, 3 * 0.01, 1e-15);
     const RiskEstimate collapse = estimate_risk(
         m.points, m.triangles, [](const Points& y) { return Points(Points::Zero(y.rows(), 3)); }, 1e-3, 1,
         NoiseModel::AlongNormals, s2);
     EXPECT_NEAR(collapse.degrees_of_freedom, 0, 1e-9);
     EXPECT_NEAR(collapse.residual, 1.0, 1e-12);  // unit sphere about the origin
-    EXPECT_NEAR(collapse.risk, 1.0 - s2, 1e-12);
+    EXPECT_NEAR(collapse.risk, 1.0 - 0.01, 1e-12);
     // A finishing step changes the residual, not the degrees of freedom: the identity finished
     // by a collapse to the centroid passes all the noise and removes the whole sphere.
     const Finish to_centroid = [](const Points& y, const Points&) { return Points(Points::Zero(y.rows(), 3)); };
@@ -103,9 +105,10 @@ TEST(RiskEstimate, ExtremeSmoothersScoreAsTheFormulaSays) {
         estimate_risk(m.points, m.triangles, identity, 1e-3, 1, NoiseModel::AlongNormals, s2, nullptr, to_centroid);
     EXPECT_NEAR(finished.degrees_of_freedom, m.points.rows(), 1e-6 * m.points.rows());
     EXPECT_NEAR(finished.residual, 1.0, 1e-12);
-    EXPECT_NEAR(finished.risk, 1.0 + s2, 1e-12);
+    EXPECT_NEAR(finished.risk, 1.0 + 0.01, 1e-12);
     EXPECT_THROW(estimate_risk(m.points, m.triangles, identity, 0, 1, NoiseModel::AlongNormals, s2), Error);
     EXPECT_THROW(estimate_risk(m.points, m.triangles, identity, 1e-3, 1, NoiseModel::AlongNormals, -s2), Error);
+    EXPECT_THROW(estimate_risk(m.points, m.triangles, identity, 1e-3, 1, NoiseModel::AlongNormals, s2.head(3)), Error);
 }
 
 // On a sphere noised along its normals or in every direction, the variance estimated from the
@@ -166,7 +169,7 @@ TEST(RiskEstimate, NoiseVarianceAndRiskMatchTheNoiseAndTheTruth) {
                 Points smoothed;
                 const RiskEstimate r = estimate_risk(noisy, m.triangles, smooth, 0.01 * h, 3,
                                                      isotropic ? NoiseModel::Isotropic : NoiseModel::AlongNormals,
-                                                     v.along_normals, &smoothed);
+                                                     v.per_vertex, &smoothed);
                 const double truth = (smoothed - m.points).rowwise().squaredNorm().mean();
                 // Unbiased, with a spread of the noise's variance over ~sqrt(vertices): 1 % here.
                 const double noise = (isotropic ? 3 : 1) * v.along_normals;
@@ -250,10 +253,10 @@ TEST(Denoise, CandidatesLeftUnscoredScoreNoLowerThanTheChosenOne) {
             o.tolerance = std::min(o.tolerance, 1e-3 * denoise_probe_step * hn / size);
             const Smoother smooth = [&](const Points& y) { return apply_filter(y, clean.triangles, design.g, o); };
             const Finish finish = [&](const Points& y, const Points& f) {
-                return denoise_output(y, f, clean.triangles, {}, out.noise.model, std::sqrt(out.variance.along_normals));
+                return denoise_output(y, f, clean.triangles, {}, out.noise.model, out.variance.per_vertex.cwiseSqrt());
             };
             const double here = estimate_risk(noisy, clean.triangles, smooth, denoise_probe_step * hn,
-                                              denoise_probe_seed, out.noise.model, out.variance.along_normals,
+                                              denoise_probe_seed, out.noise.model, out.variance.per_vertex,
                                               nullptr, finish)
                                     .risk;
             EXPECT_GE(here, chosen);

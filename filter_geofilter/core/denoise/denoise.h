@@ -93,8 +93,8 @@ SelectedBumpDenoise denoise_selected_bump(const Points& input, const Points& low
 // The umbrella's two lowest cutoffs came with keeping only the motion along the normals: the
 // sideways drift of a strong lowpass no longer costs, and 0.25, the lowest before, was chosen
 // in 10 of the comparison's 22 cases.
-constexpr double denoise_umbrella_cutoffs[] = {0.125, 0.18, 0.25, 0.35, 0.5, 0.7, 1.0};
-constexpr double denoise_cutoff_radii[] = {0.75, 1.0, 1.5, 2.0};
+constexpr double denoise_umbrella_cutoffs[] = {0.125, 0.18, 0.25, 0.35, 0.5, 0.7, 1.0, 1.4};
+constexpr double denoise_cutoff_radii[] = {0.5, 0.75, 1.0, 1.5, 2.0};
 // The risk estimate's probe (risk_estimate.h): 1 % of the mean edge length, its signs
 // from a fixed seed, so that Denoise is deterministic and every candidate sees the same probe.
 constexpr double denoise_probe_step = 0.01;
@@ -136,7 +136,7 @@ constexpr double denoise_motion_bound_sigmas = 3.0;
 
 // What Denoise makes of a lowpass's result on noisy points: when the noise looks along the
 // normals, only the motion along them (normal_motion.h), no longer than
-// denoise_motion_bound_sigmas standard deviations of the noise along them (`noise_sigma`);
+// denoise_motion_bound_sigmas standard deviations of the noise along them (`noise_sigma`, per vertex);
 // then each closed component given back its volume (volume.h: the lowpass shrinks thin
 // curved parts). The candidates' risk is estimated on this, the surface Denoise returns, not
 // on the lowpass alone: along the normals the two rank differently: ranking the lowpasses
@@ -149,7 +149,7 @@ constexpr double denoise_motion_bound_sigmas = 3.0;
 // 7,634 of the man cloud's 17,495 points (noise of 0.3 mean edge lengths along the normals:
 // RMS to the clean points 1.46e-3 with the check, 1.31e-3 without; docs/results/clouds.md).
 Points denoise_output(const Points& noisy, Points lowpassed, const Triangles& triangles, const DenoiseSurface& surface,
-                      NoiseModel model, double noise_sigma, NormalMotionReport* motion = nullptr, MotionBoundReport* bound = nullptr,
+                      NoiseModel model, const Eigen::VectorXd& noise_sigma, NormalMotionReport* motion = nullptr, MotionBoundReport* bound = nullptr,
                       VolumeRestoreReport* volume = nullptr);
 
 // On a large mesh the candidates are scored on patches of it, not on all of it: the risk is a
@@ -180,11 +180,21 @@ struct SamplingDenoise {
     std::vector<double> scoring_seconds;  // per candidate, 0 when not scored
     NoiseDirection noise;  // the noise model the scores assumed
     NoiseVariance variance;  // and the noise's variance they assumed
+    // Impulses (noise_variance.h) put back on the finest band's lowpass before the rest: a
+    // lowpass spreads a spike over its neighbours instead of removing it, and the motion
+    // bound would hold it where it is.
+    int impulses = 0;
     std::optional<NormalMotionReport> normal_motion;  // when the noise looks along the normals
     std::optional<MotionBoundReport> motion_bound;    // likewise
     VolumeRestoreReport volume;
     int scored_vertices = 0;  // the vertices the risk was a mean over
     int scoring_patches = 0;  // 0: scored on the whole mesh, else on this many patches of it
+    // The same estimate for leaving the mesh as it is: the noise itself, s^2 per noisy number
+    // (residual 0, every noisy number passed through). When no lowpass scores below it, the
+    // noise is smaller than what any of them would take of the surface's own shape, and
+    // `points` is the input, untouched (design and report are then the best lowpass's, not run).
+    double input_risk = 0;
+    bool input_kept = false;
 };
 
 // Estimates the noise's direction and variance (noise_direction.h, noise_variance.h), then
@@ -197,7 +207,8 @@ struct SamplingDenoise {
 // to options.tolerance, whichever is tighter, so that solver error does not reach the
 // scores. Scores on patches when the mesh has more than `score_on_patches_above` vertices in
 // faces (see denoise_scoring_vertices, which it is but in tests; the patches then hold that
-// many). Throws Error like apply_filter.
+// many). Returns the input unchanged when leaving it scores lower than every lowpass
+// (SamplingDenoise::input_risk). Throws Error like apply_filter.
 SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& triangles, int order,
                                        const DenoiseSurface& surface, const FilterOptions& options,
                                        int score_on_patches_above = denoise_scoring_vertices);

@@ -6,15 +6,15 @@
 namespace geofilter {
 
 struct MotionBoundReport {
-    double bound = 0;     // the longest motion allowed, in the mesh's units
+    double bound = 0;     // the longest motion allowed, in the mesh's units: the mean over the vertices
     int vertices_held = 0;  // vertices whose motion was longer and was shortened to the bound
 };
 
-// Each vertex of `moved` whose motion from `input` is longer than `bound` is brought back
-// along that motion to `bound` from its input position; the others stay where they are.
+// Each vertex v of `moved` whose motion from `input` is longer than `bound[v]` is brought back
+// along that motion to `bound[v]` from its input position; the others stay where they are.
 // A denoiser that moves a vertex much farther than its noise could have displaced it is
 // reshaping the surface there (a lowpass shrinking a toe or the tip of a tail), not
 // removing noise.
-Points bound_motion(const Points& input, const Points& moved, double bound, MotionBoundReport* report = nullptr);
+Points bound_motion(const Points& input, const Points& moved, const Eigen::VectorXd& bound, MotionBoundReport* report = nullptr);
 
 } // namespace geofilter

@@ -9,26 +9,48 @@
 // normals n, the expected sum of squared normal residuals is s^2 (n - 2 dof + kept), with dof
 // the divergence of S along the normals and kept the squared norm of its action on them, both
 // measured with one random +-1 probe along the normals. The squared residuals are summarised
-// by their median, as Donoho & Johnstone's estimator takes the finest band's median absolute
+// by medians, as Donoho & Johnstone's estimator takes the finest band's median absolute
 // value: where the clean mesh's own finest detail reaches the band (sharp edges, fingers,
 // irregular sampling), those vertices' residuals are detail, and with the mean the estimate
 // came 12-47 % above the noise added along the normals in 5 of the comparison's 22 cases
-// (fandisk, the man at 0.1 h along the normals and at 0.3 h in random directions). With the
-// median, on 30 noisy scans (five meshes, 0.1-0.5 h, both directions) Denoise ended as close
-// to the truth or closer: the man at 0.1 h along the normals 0.472 -> 0.428e-3 RMS, the
-// diplodocus at 0.1 h in random directions 0.324 -> 0.314e-3, the rest within 0.2 %.
+// (fandisk, the man at 0.1 h along the normals and at 0.3 h in random directions).
+// The medians are local, one per vertex over its neighbourhood (noise_neighbourhood_vertices):
+// a scanner's noise grows with depth and with the angle to the view, and one median over the
+// whole mesh is that of the quiet part: on a scan whose noise along one view direction grew
+// fivefold with depth it read a quarter of the mean variance, and every lowpass then scored
+// worse than leaving the mesh as it was.
+// Impulses: a vertex whose residual is farther than denoise_impulse_sigmas standard deviations
+// of the residual its neighbourhood's noise leaves (Gaussian noise goes that far once in 5e8)
+// is no sample of that noise but an outlier (a spike of a scan), when it also stands
+// denoise_impulse_alone times farther out than any of its neighbours.
 #pragma once
 
 #include "core/filter/filter.h"
 #include "core/denoise/noise_direction.h"
 #include "core/types.h"
 
+#include <vector>
+
 namespace geofilter {
 
+// A vertex's noise is measured on the nearest vertices in rings around it, at least this
+// many: the middle of that many squared residuals is within about 20 % of the variance (its
+// standard error for a chi-square with one degree of freedom), and the risk estimate averages
+// the per-vertex values over the mesh, so their spread averages out too. On the tuning half of
+// experiments/generalize_denoise's noise families 32 and 64 ended within 5 % of each other
+// either way (32 closer on depth-dependent noise, 64 on anisotropic sampling and scan debris);
+// 64 was kept for the smaller spread.
+constexpr int noise_neighbourhood_vertices = 64;
+constexpr double denoise_impulse_sigmas = 6.0;
+constexpr double denoise_impulse_alone = 2.0;
+
 struct NoiseVariance {
-    double along_normals = 0;  // s^2: the variance of the noise along the normals
+    Eigen::VectorXd per_vertex;  // s_i^2 of the noise along the normals at each vertex (0 for a vertex in no face)
+    double along_normals = 0;  // their mean over the vertices with a normal
     double degrees_of_freedom = 0;  // of the finest band's lowpass along the normals, per vertex
     double kept = 0;                // its squared action on the normal probe, per vertex
+    std::vector<int> impulses;      // outliers (above), in increasing order
+    Points finest;                  // the finest band's lowpass of the points: where an impulse goes back to
 };
 
 // The normals are smoothed_vertex_normals (noise_direction.h). `options` gives the solver and

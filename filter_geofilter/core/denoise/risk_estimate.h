@@ -29,10 +29,14 @@ struct RiskEstimate {
     int vertices = 0;      // the vertices on faces (those with a normal)
     int observations = 0;  // noisy numbers: one per vertex along the normals, three in every direction
     // Stein's estimate of the mean over those vertices of |F(y)_i - x_i|^2, x the noise-free
-    // positions: residual + s^2 (2 dof - observations) / vertices, s^2 the variance of each
-    // noisy number. Unbiased for noise that is Gaussian and independent from number to
-    // number; it may come out slightly negative for a smoother that is nearly exact.
+    // positions: residual + (2 sum_i s_i^2 dof_i - sum_i s_i^2 obs_i) / vertices, s_i^2 the
+    // variance of each of vertex i's noisy numbers, dof_i its share of the divergence.
+    // Unbiased for noise that is Gaussian and independent from number to number; it may come
+    // out slightly negative for a smoother that is nearly exact.
     double risk = 0;
+    // The same estimate for leaving y as it is (residual 0, every noisy number passed): the
+    // noise's own mean squared size, sum_i s_i^2 obs_i / vertices.
+    double unchanged = 0;
 };
 
 using Smoother = std::function<Points(const Points&)>;
@@ -41,7 +45,7 @@ using Smoother = std::function<Points(const Points&)>;
 using Finish = std::function<Points(const Points& y, const Points& smoothed)>;
 
 // Estimates the risk of `smooth` at y under noise of `model` (noise_direction.h) and variance
-// `noise_variance` per noisy number. Along the normals, the degrees of freedom are the
+// `noise_variance[i]` per noisy number of vertex i (one per row of y). Along the normals, the degrees of freedom are the
 // divergence of F along them, estimated with one random +-1 probe b as
 // sum_i b_i n_i . (F(y + step b n) - F(y))_i / step; in every direction, the divergence of F in
 // 3-D, with a random +-1 probe on each coordinate. Both unbiased; the relative spread is about
@@ -58,7 +62,7 @@ using Finish = std::function<Points(const Points& y, const Points& smoothed)>;
 // `counted` (one flag per vertex, or empty for all): the vertices the means run over (the
 // interior of patches cut out of a larger mesh: patches.h); the probe still moves them all.
 RiskEstimate estimate_risk(const Points& y, const Triangles& triangles, const Smoother& smooth, double step,
-                           std::uint64_t seed, NoiseModel model, double noise_variance, Points* smoothed = nullptr,
+                           std::uint64_t seed, NoiseModel model, const Eigen::VectorXd& noise_variance, Points* smoothed = nullptr,
                            const Finish& finish = {}, const std::vector<bool>& counted = {});
 
 } // namespace geofilter
