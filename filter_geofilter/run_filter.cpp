@@ -536,7 +536,11 @@ RunOutput filter_surface(const FilterSpec& spec, const ParameterValues& given, c
             case SelectedBumpOutcome::PatternRemoved:
                 out.log.push_back(std::string("pattern of bumps removed (the selected one points ") +
                                   (pattern.side > 0 ? "outwards" : "inwards") + "): " + std::to_string(pattern.bumps) +
-                                  " bumps of " + std::to_string(pattern.candidates) + " peaks, " + fit +
+                                  " bumps of " + std::to_string(pattern.candidates) + " peaks" +
+                                  (pattern.opposite ? " and " + std::to_string(pattern.opposite) + " of the other sign (" +
+                                                          format_number(100 * pattern.unexplained_one_sign) +
+                                                          " % unexplained without them)"
+                                                    : std::string()) + ", " + fit +
                                   "; volume removed " + format_number(pattern.removed_volume));
                 break;
             case SelectedBumpOutcome::FlatLowpass: {

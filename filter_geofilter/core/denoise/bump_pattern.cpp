@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <unordered_map>
 
 #include <Eigen/SparseCholesky>
@@ -253,27 +254,30 @@ Points remove_bump_pattern(const Points& input, const Points& lowpassed, const T
     }
     const Eigen::VectorXd height = result.side * removed;  // positive on the bumps
 
-    // Candidate centres: the highest vertices within rings half a bump radius wide.
+    // Candidate centres: the highest vertices of a field within rings half a bump radius wide.
     const VertexNeighbours nb = vertex_neighbours(triangles, n);
     const int rings = std::max(1, static_cast<int>(std::lround(0.5 * bump_radius / mean_edge)));
-    Eigen::VectorXd highest = height;
-    for (int r = 0; r < rings; ++r) {
-        Eigen::VectorXd next = highest;
+    const auto peaks_of = [&](const Eigen::VectorXd& field, int keep) {
+        Eigen::VectorXd highest = field;
+        for (int r = 0; r < rings; ++r) {
+            Eigen::VectorXd next = highest;
+            for (Eigen::Index v = 0; v < n; ++v)
+                for (int j = nb.start[v]; j < nb.start[v + 1]; ++j) next[v] = std::max(next[v], highest[nb.index[j]]);
+            highest.swap(next);
+        }
+        std::vector<int> peaks;
         for (Eigen::Index v = 0; v < n; ++v)
-            for (int j = nb.start[v]; j < nb.start[v + 1]; ++j) next[v] = std::max(next[v], highest[nb.index[j]]);
-        highest.swap(next);
-    }
+            if (used[v] && field[v] > 0 && (field[v] >= highest[v] || v == keep)) peaks.push_back(static_cast<int>(v));
+        if (keep >= 0 && std::find(peaks.begin(), peaks.end(), keep) == peaks.end()) peaks.push_back(keep);
+        return peaks;
+    };
     int selected_peak = -1;
     for (int f : bump_faces)
         for (int k = 0; k < 3; ++k) {
             const int v = triangles(f, k);
             if (selected_peak < 0 || height[v] > height[selected_peak]) selected_peak = v;
         }
-    std::vector<int> centres;
-    for (Eigen::Index v = 0; v < n; ++v)
-        if (used[v] && height[v] > 0 && (height[v] >= highest[v] || v == selected_peak))
-            centres.push_back(static_cast<int>(v));
-    if (std::find(centres.begin(), centres.end(), selected_peak) == centres.end()) centres.push_back(selected_peak);
+    std::vector<int> centres = peaks_of(height, selected_peak);
     result.candidates = static_cast<int>(centres.size());
 
     // The profile's width. What the lowpass removes of one Gaussian bump of width w, psi_w =
@@ -337,11 +341,12 @@ Points remove_bump_pattern(const Points& input, const Points& lowpassed, const T
         }
     }
 
-    // Heights of the peaks `at` for the removed profile `column` (one value per bin), least
-    // squares weighted by `weight`; peaks below a share of the selected one's height are
-    // dropped (they are the surface's own detail) and the rest fitted again.
+    // Heights of the peaks `at` of `target` for the removed profile `column` (one value per
+    // bin), least squares weighted by `weight`; peaks lower than `least` (or, when `least` is
+    // negative, than a share of the selected peak's height) are dropped (they are the surface's
+    // own detail) and the rest fitted again. `explained` receives psi * a, offset included.
     auto fit = [&](std::vector<int>& at, const Eigen::VectorXd& column, const Eigen::VectorXd& weight,
-                   double* residual) {
+                   const Eigen::VectorXd& target, double least, Eigen::VectorXd* explained) {
         auto profile = [&](double distance) {
             const double x = distance / bin - 0.5;  // bin centres
             if (x <= 0) return column[0];
@@ -363,35 +368,85 @@ Points remove_bump_pattern(const Points& input, const Points& lowpassed, const T
                 if (weight[v] > 0) entries.emplace_back(v, static_cast<int>(peaks.size()), 1.0);
             psi.resize(n, static_cast<Eigen::Index>(peaks.size()) + 1);
             psi.setFromTriplets(entries.begin(), entries.end());
-            return non_negative_solve(weighted_gram(psi, weight), psi.transpose() * weight.asDiagonal() * height, true);
+            return non_negative_solve(weighted_gram(psi, weight), psi.transpose() * weight.asDiagonal() * target, true);
         };
         SparseMatrix psi;
         const Eigen::VectorXd first = solve(at, psi);
-        const double selected =
-            first[std::find(at.begin(), at.end(), selected_peak) - at.begin()];
+        if (least < 0) {
+            const auto it = std::find(at.begin(), at.end(), selected_peak);
+            least = it == at.end() ? 0.0 : bump_height_share * first[it - at.begin()];
+        }
         std::vector<int> kept;
         for (size_t i = 0; i < at.size(); ++i)
-            if (first[static_cast<Eigen::Index>(i)] >= bump_height_share * selected) kept.push_back(at[i]);
+            if (first[static_cast<Eigen::Index>(i)] >= least && first[static_cast<Eigen::Index>(i)] > 0) kept.push_back(at[i]);
+        const bool same = kept.size() == at.size();
         at.swap(kept);
-        const Eigen::VectorXd a = at.size() == kept.size() ? first : solve(at, psi);
-        if (residual) *residual = (judged.array() * (height - psi * a).array().square()).sum();
+        const Eigen::VectorXd a = same ? first : solve(at, psi);
+        if (explained) *explained = psi * a;
         return a;
+    };
+    // The pattern on the selected bump's side, then, on what it leaves, the opposite side's:
+    // a texture of bumps and dents has both. Peaks of the opposite side count when at least
+    // bump_height_share of the selected bump high, as on its own side. On a pattern of one
+    // sign what the first fit leaves holds no such peaks.
+    struct Fit {
+        std::vector<int> at, opposite_at;
+        Eigen::VectorXd a, opposite_a;
+        double selected = 0;          // the selected bump's fitted height
+        Eigen::VectorXd unexplained;  // height - both fits
+        Eigen::VectorXd one_sign;     // height - the selected side's fit
+    };
+    auto fit_both = [&](std::vector<int> at, const Eigen::VectorXd& column, const Eigen::VectorXd& weight,
+                        const std::function<bool(int)>& near) {
+        Fit r;
+        Eigen::VectorXd explained;
+        r.a = fit(at, column, weight, height, -1, &explained);
+        const auto it = std::find(at.begin(), at.end(), selected_peak);
+        r.selected = it == at.end() ? 0.0 : r.a[it - at.begin()];
+        r.at = std::move(at);
+        r.unexplained = height - explained;
+        r.one_sign = r.unexplained;
+        if (r.selected > 0) {
+            const Eigen::VectorXd below = -r.unexplained;
+            std::vector<int> opposite;
+            for (int v : peaks_of(below, -1))
+                if (near(v)) opposite.push_back(v);
+            if (!opposite.empty()) {
+                r.opposite_a = fit(opposite, column, weight, below, bump_height_share * r.selected, &explained);
+                r.opposite_at = std::move(opposite);
+                if (!r.opposite_at.empty()) r.unexplained += explained;
+            }
+        }
+        return r;
     };
 
     std::vector<int> local;
     for (int c : centres)
         if ((lowpassed.row(c) - peak).norm() < judged_reach + 2 * reach) local.push_back(c);
-    Eigen::VectorXd residuals(count), varying(count), selected_heights(count);
+    const auto is_local = [&](int v) { return (lowpassed.row(v) - peak).norm() < judged_reach + 2 * reach; };
+    Eigen::VectorXd residuals(count), one_sign(count), varying(count), selected_heights(count);
     for (Eigen::Index k = 0; k < count; ++k) {
-        std::vector<int> at = local;
-        const Eigen::VectorXd a = fit(at, table.col(k), nearby, &residuals[k]);
+        const Fit f = fit_both(local, table.col(k), nearby, is_local);
+        residuals[k] = (judged.array() * f.unexplained.array().square()).sum();
+        one_sign[k] = (judged.array() * f.one_sign.array().square()).sum();
         // What the bumps are to explain is what varies about the fitted offset.
-        varying[k] = (judged.array() * (height.array() - a[a.size() - 1]).square()).sum();
-        selected_heights[k] = a[std::find(at.begin(), at.end(), selected_peak) - at.begin()];
+        const double offset = f.a.size() ? f.a[f.a.size() - 1] : 0.0;
+        varying[k] = (judged.array() * (height.array() - offset).square()).sum();
+        selected_heights[k] = f.selected;
     }
-    Eigen::Index best = 0;
-    residuals.minCoeff(&best);
-    result.unexplained = varying[best] > 0 ? std::sqrt(residuals[best] / varying[best]) : 1.0;
+    // The other sign's elements are part of the pattern when they explain a good share of what
+    // the selected side left; otherwise they are the misfit of the profile's shape (cosine
+    // caps fitted with Gaussians leave rings that fit as shallow dents, unit test). Each way
+    // takes its own best width.
+    const auto share = [&](const Eigen::VectorXd& r, Eigen::Index k) { return varying[k] > 0 ? std::sqrt(r[k] / varying[k]) : 1.0; };
+    Eigen::Index best_one = 0, best_both = 0;
+    one_sign.minCoeff(&best_one);
+    residuals.minCoeff(&best_both);
+    result.unexplained_one_sign = share(one_sign, best_one);
+    const bool both_signs = share(residuals, best_both) <= bump_opposite_gain * result.unexplained_one_sign;
+    const Eigen::VectorXd& chosen = both_signs ? residuals : one_sign;
+    const Eigen::Index best = both_signs ? best_both : best_one;
+    result.unexplained = share(chosen, best);
     result.width = widths[best];
     result.selected_height = selected_heights[best];
     // No pattern to fit on the whole surface: the selection is not a bump (a smooth patch, a
@@ -403,21 +458,24 @@ Points remove_bump_pattern(const Points& input, const Points& lowpassed, const T
     }
     double step = 0;  // from the best grid width, in grid steps
     if (best > 0 && best + 1 < count) {
-        const double curvature = residuals[best - 1] - 2 * residuals[best] + residuals[best + 1];
-        if (curvature > 0) step = std::clamp(0.5 * (residuals[best - 1] - residuals[best + 1]) / curvature, -0.5, 0.5);
+        const double curvature = chosen[best - 1] - 2 * chosen[best] + chosen[best + 1];
+        if (curvature > 0) step = std::clamp(0.5 * (chosen[best - 1] - chosen[best + 1]) / curvature, -0.5, 0.5);
     }
     result.width = widths[best] * std::pow(search_step, step);
     const Eigen::Index other = step < 0 ? best - 1 : best + 1;
     const Eigen::VectorXd column =
         step == 0 ? Eigen::VectorXd(table.col(best))
                   : Eigen::VectorXd((1 - std::abs(step)) * table.col(best) + std::abs(step) * table.col(other));
-    const Eigen::VectorXd heights = fit(centres, column, area, nullptr);
+    const Fit whole = fit_both(centres, column, area, [&](int) { return both_signs; });
 
-    const SparseMatrix phi = profiles(grid, lowpassed, centres, result.width, n);
-    const Eigen::VectorXd pattern = phi * heights.head(phi.cols());  // H, on the bumps' side
-    result.bumps = static_cast<int>(centres.size());
-    const auto selected_it = std::find(centres.begin(), centres.end(), selected_peak);
-    result.selected_height = selected_it == centres.end() ? 0.0 : heights[selected_it - centres.begin()];
+    // H, on the bumps' side: the selected side's Gaussians less the opposite side's.
+    Eigen::VectorXd pattern = profiles(grid, lowpassed, whole.at, result.width, n) * whole.a.head(static_cast<Eigen::Index>(whole.at.size()));
+    if (!whole.opposite_at.empty())
+        pattern -= profiles(grid, lowpassed, whole.opposite_at, result.width, n) *
+                   whole.opposite_a.head(static_cast<Eigen::Index>(whole.opposite_at.size()));
+    result.bumps = static_cast<int>(whole.at.size());
+    result.opposite = static_cast<int>(whole.opposite_at.size());
+    result.selected_height = whole.selected;
     result.removed = true;
     for (Eigen::Index v = 0; v < n; ++v) {
         if (!used[v]) continue;

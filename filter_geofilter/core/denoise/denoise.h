@@ -72,8 +72,9 @@ struct SelectedBumpDenoise {
 // Denoise's rule for one selected bump (`bump_faces`, measured radius `bump_radius`):
 // `lowpassed` is the input lowpassed by `g` (design_denoise_from_bump, applied with
 // `options`). The pattern of bumps like it is removed (remove_bump_pattern). When no pattern
-// explains the selection (mixed bumps and dents, a texture, noise as large as the bump),
-// returning the input would be a silent no-op; the flat lowpass is returned instead when it
+// explains the selection (bumps of another profile, a texture, noise as large as the bump),
+// returning the input would be a silent no-op; the flat lowpass's motion along the normals
+// (normal_motion.h) is returned instead when it
 // removed detail at the selection higher than bump_min_height of its radius, the height
 // below which a selection is a flat patch; below that the input is returned unchanged.
 SelectedBumpDenoise denoise_selected_bump(const Points& input, const Points& lowpassed, const Triangles& triangles,
