@@ -545,7 +545,18 @@ RunOutput filter_surface(const FilterSpec& spec, const ParameterValues& given, c
                 break;
             case SelectedBumpOutcome::FlatLowpass: {
                 const std::string why = "fell back to the flat lowpass because " + refused + "; " + detail +
-                                        ": bumps of this size and smaller were smoothed away, their mean height kept";
+                                        ": bumps of this size and smaller were smoothed away, their mean height kept (the enclosed"
+                                        " volume moved by " + format_number(100 * bump.flat_volume_change) + " %)";
+                out.log.push_back("pattern of bumps: " + why);
+                out.report.warnings.push_back(why);
+                break;
+            }
+            case SelectedBumpOutcome::Reshapes: {
+                const std::string why = refused + "; the flat lowpass at this size would change the enclosed volume by " +
+                                        format_number(100 * bump.flat_volume_change) + " % (more than " +
+                                        format_number(100 * denoise_flat_max_volume_change) +
+                                        " %): it would take parts of the surface itself as small as the bump, so the"
+                                        " mesh was left as it was";
                 out.log.push_back("pattern of bumps: " + why);
                 out.report.warnings.push_back(why);
                 break;

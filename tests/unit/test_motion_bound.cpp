@@ -94,8 +94,8 @@ TEST(BoundMotion, DenoisePutsAnImpulseBackInsteadOfHoldingIt) {
     const Eigen::Index spike = 0;
     noisy.row(spike) = clean.points.row(spike) * (1 + 12 * sigma);
     const SamplingDenoise out = denoise_sampling_noise(noisy, clean.triangles, 4, {}, FilterOptions{});
-    ASSERT_EQ(out.variance.impulses, std::vector<int>{0});
     EXPECT_EQ(out.impulses, 1);
+    EXPECT_TRUE(out.variance.impulses.empty());  // measured again with the spike back: none left
     EXPECT_LT(std::abs(out.points.row(spike).norm() - 1), 3 * sigma);
     EXPECT_GT(std::abs(quiet.points.row(spike).norm() - 1) + 9 * sigma, std::abs(out.points.row(spike).norm() - 1));
 }

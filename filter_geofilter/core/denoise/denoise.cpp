@@ -74,8 +74,17 @@ SelectedBumpDenoise denoise_selected_bump(const Points& input, const Points& low
         // moves a free boundary inwards. Faces turned by more than normal_motion_max_turn_degrees
         // still take the lowpass's positions: without that check the scans of the tuning half
         // of experiments/generalize_denoise folded 3-20x more faces.
-        out.outcome = SelectedBumpOutcome::FlatLowpass;
-        out.points = keep_normal_motion(input, lowpassed, triangles);
+        const Points flat = keep_normal_motion(input, lowpassed, triangles);
+        VolumeRestoreReport volume;
+        restore_volume(input, flat, triangles, &volume);
+        out.flat_volume_change = volume.largest_change;
+        if (volume.closed_components > 0 && volume.largest_change > denoise_flat_max_volume_change) {
+            out.outcome = SelectedBumpOutcome::Reshapes;
+            out.points = input;
+        } else {
+            out.outcome = SelectedBumpOutcome::FlatLowpass;
+            out.points = flat;
+        }
     } else {
         out.outcome = SelectedBumpOutcome::Unchanged;
         out.points = input;
@@ -154,8 +163,13 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
     // is one of three equal axes.
     best.variance = estimate_noise_variance(points, triangles, options);
     Points y = points;
-    for (int i : best.variance.impulses) y.row(i) = best.variance.finest.row(i);
-    best.impulses = static_cast<int>(best.variance.impulses.size());
+    // Impulses next to each other hide one another (each lifts the other's finest band):
+    // measured again once those found are back, until none is left or a few rounds.
+    for (int round = 0; round < denoise_impulse_rounds && !best.variance.impulses.empty(); ++round) {
+        for (int i : best.variance.impulses) y.row(i) = best.variance.finest.row(i);
+        best.impulses += static_cast<int>(best.variance.impulses.size());
+        best.variance = estimate_noise_variance(y, triangles, options);
+    }
     Points usable_y = usable.points;
     for (Eigen::Index k = 0; k < usable_y.rows(); ++k) usable_y.row(k) = y.row(usable.active_vertex[static_cast<std::size_t>(k)]);
     // A cloud's place along the surface is its sampling (DenoiseSurface).

@@ -42,7 +42,7 @@ namespace geofilter {
 // 64 was kept for the smaller spread.
 constexpr int noise_neighbourhood_vertices = 64;
 constexpr double denoise_impulse_sigmas = 6.0;
-constexpr double denoise_impulse_alone = 2.0;
+constexpr double denoise_impulse_alone = 1.0;
 
 struct NoiseVariance {
     Eigen::VectorXd per_vertex;  // s_i^2 of the noise along the normals at each vertex (0 for a vertex in no face)
