@@ -437,7 +437,7 @@ RunOutput filter_surface(const FilterSpec& spec, const ParameterValues& given, c
             out.log.push_back("impulses: " + std::to_string(sampled->impulses) + " vertices stood more than " +
                               format_number(denoise_impulse_sigmas) + " standard deviations of their noise out of the surface,"
                               " and " + format_number(denoise_impulse_alone) +
-                              " times farther than any neighbour: put back on the finest band's lowpass first");
+                              " times farther than any neighbour: put back on the mean of their neighbours first");
         out.log.push_back(std::string("risk estimate ") + (sampling_why.empty() ? "(nothing selected)" : "(on the whole mesh)") +
                           ": " + std::to_string(scored) + " of " +
                           std::to_string(sampled->scores.size()) +

@@ -1,4 +1,5 @@
 #include "core/denoise/denoise.h"
+#include "core/mesh/components.h"
 #include "core/mesh/mesh_prep.h"
 #include "core/operators/operators.h"
 #include "core/denoise/patches.h"
@@ -163,10 +164,18 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
     // is one of three equal axes.
     best.variance = estimate_noise_variance(points, triangles, options);
     Points y = points;
-    // Impulses next to each other hide one another (each lifts the other's finest band):
-    // measured again once those found are back, until none is left or a few rounds.
+    // An impulse goes back to the mean of its neighbours: its neighbours are clean (it stands
+    // out twice as far as any), while the finest band's lowpass keeps half of a spike. Impulses
+    // near each other hide one another: measured again once those found are back, until none
+    // is left.
+    const VertexNeighbours neighbours = vertex_neighbours(triangles, points.rows());
     for (int round = 0; round < denoise_impulse_rounds && !best.variance.impulses.empty(); ++round) {
-        for (int i : best.variance.impulses) y.row(i) = best.variance.finest.row(i);
+        const Points before = y;
+        for (int i : best.variance.impulses) {
+            Eigen::RowVector3d mean = Eigen::RowVector3d::Zero();
+            for (int j = neighbours.start[i]; j < neighbours.start[i + 1]; ++j) mean += before.row(neighbours.index[j]);
+            y.row(i) = mean / (neighbours.start[i + 1] - neighbours.start[i]);
+        }
         best.impulses += static_cast<int>(best.variance.impulses.size());
         best.variance = estimate_noise_variance(y, triangles, options);
     }

@@ -199,7 +199,7 @@ struct SamplingDenoise {
     std::vector<double> scoring_seconds;  // per candidate, 0 when not scored
     NoiseDirection noise;  // the noise model the scores assumed
     NoiseVariance variance;  // and the noise's variance they assumed
-    // Impulses (noise_variance.h) put back on the finest band's lowpass before the rest: a
+    // Impulses (noise_variance.h) put back on the mean of their neighbours before the rest: a
     // lowpass spreads a spike over its neighbours instead of removing it, and the motion
     // bound would hold it where it is.
     int impulses = 0;  // over every round

@@ -15,13 +15,13 @@ namespace geofilter {
 namespace {
 
 // The expected value of the (k+1)-th smallest of m squared standard normal numbers: what a
-// neighbourhood's middle squared residual (nth_element at k = m / 2) is, in units of the
-// noise's variance. For large m it tends to the median of a chi-square with one degree of
-// freedom, 0.4549; for the few dozen of a neighbourhood it lies 5-10 % above it (the upper
-// middle of an even count, and the distribution's skew), which the plain median left in the
-// estimate. By quadrature over z = |normal number|: the order statistic's density is
+// neighbourhood's k-th squared residual (nth_element at k) is, in units of the noise's
+// variance. The middle of many tends to the median of a chi-square with one degree of
+// freedom, 0.4549; the middle of a few dozen lies 5-14 % above it (the upper middle of an
+// even count, and the distribution's skew), which a plain median leaves in the estimate. By
+// quadrature over z = |normal number|: the order statistic's density is
 // m!/(k! (m-k-1)!) F^k (1-F)^(m-k-1) 2 phi(z), F(z) = erf(z / sqrt 2).
-double expected_middle_square(int m, int k) {
+double expected_order_square(int m, int k) {
     const double log_coefficient = std::lgamma(m + 1.0) - std::lgamma(k + 1.0) - std::lgamma(m - k + 0.0);
     const int intervals = 4000;  // Simpson's rule on [0, 9]: the tail beyond holds under 1e-18
     const double top = 9.0, step = top / intervals;
@@ -86,7 +86,7 @@ NoiseVariance estimate_noise_variance(const Points& points, const Triangles& tri
     std::vector<Eigen::Index> mark(static_cast<std::size_t>(points.rows()), -1);
     std::vector<int> ring, next;
     std::vector<double> squared;
-    std::unordered_map<std::size_t, double> middle_square;  // by neighbourhood size
+    std::unordered_map<std::size_t, double> order_square;  // by neighbourhood size
     double sum = 0;
     for (Eigen::Index i = 0; i < points.rows(); ++i) {
         if (!has_normal[static_cast<std::size_t>(i)]) continue;
@@ -108,9 +108,9 @@ NoiseVariance estimate_noise_variance(const Points& points, const Triangles& tri
         }
         const auto middle = squared.begin() + static_cast<std::ptrdiff_t>(squared.size() / 2);
         std::nth_element(squared.begin(), middle, squared.end());
-        auto [expected, added] = middle_square.try_emplace(squared.size(), 0.0);
+        auto [expected, added] = order_square.try_emplace(squared.size(), 0.0);
         if (added)
-            expected->second = expected_middle_square(static_cast<int>(squared.size()), static_cast<int>(squared.size() / 2));
+            expected->second = expected_order_square(static_cast<int>(squared.size()), static_cast<int>(squared.size() / 2));
         out.per_vertex[i] = *middle / expected->second / removed;
         sum += out.per_vertex[i];
     }
@@ -125,7 +125,6 @@ NoiseVariance estimate_noise_variance(const Points& points, const Triangles& tri
         if (std::abs(residual[i]) > denoise_impulse_alone * neighbours) out.impulses.push_back(static_cast<int>(i));
     }
     out.along_normals = sum / vertices;
-    out.finest = f;
     return out;
 }
 
