@@ -30,6 +30,23 @@ TEST(BoundMotion, ShortensOnlyTheLongerMotionsAlongTheirOwnDirection) {
     EXPECT_NEAR((out.row(2) - Eigen::RowVector3d(-2 + 3.0 / 13, 4.0 / 13, 5 + 12.0 / 13)).norm(), 0.0, 1e-15);
 }
 
+// The unit icosphere of 2,562 vertices noised along its normals by 0.2 mean edge lengths.
+struct NoisySphere {
+    Mesh clean;
+    double sigma;
+    Points noisy;
+};
+NoisySphere noisy_sphere() {
+    NoisySphere s{icosphere(4, 1.0), 0, {}};
+    s.sigma = 0.2 * mean_edge_length(s.clean.points, s.clean.triangles);
+    const Eigen::MatrixXd n = vertex_normals(s.clean.points, s.clean.triangles);
+    std::mt19937 random(3);
+    std::normal_distribution<double> gauss(0.0, s.sigma);
+    s.noisy = s.clean.points;
+    for (Eigen::Index v = 0; v < s.noisy.rows(); ++v) s.noisy.row(v) += gauss(random) * n.row(v);
+    return s;
+}
+
 // A sphere noised along its normals with a narrow feature standing 12 noise deviations out of
 // it: a vertex and its ring raised together (narrower than any cutoff the noise calls for,
 // like a toe or a tail's tip). The lowpass Denoise chooses flattens it, but no vertex moves
@@ -37,14 +54,10 @@ TEST(BoundMotion, ShortensOnlyTheLongerMotionsAlongTheirOwnDirection) {
 // gives the volume back), so the feature stays at least 9 deviations high. Its vertices stand
 // out together, so none is taken for an impulse.
 TEST(BoundMotion, DenoiseMovesNoVertexFartherThanThreeDeviationsOfTheNoise) {
-    const Mesh clean = icosphere(4, 1.0);  // 2,562 vertices
-    const double h = mean_edge_length(clean.points, clean.triangles);
-    const double sigma = 0.2 * h;
-    const Eigen::MatrixXd n = vertex_normals(clean.points, clean.triangles);
-    std::mt19937 random(3);
-    std::normal_distribution<double> gauss(0.0, sigma);
-    Points noisy = clean.points;
-    for (Eigen::Index v = 0; v < noisy.rows(); ++v) noisy.row(v) += gauss(random) * n.row(v);
+    const NoisySphere s = noisy_sphere();
+    const Mesh& clean = s.clean;
+    const double sigma = s.sigma;
+    Points noisy = s.noisy;
     const Eigen::Index tip = 0;
     std::vector<bool> feature(static_cast<std::size_t>(noisy.rows()), false);
     for (Eigen::Index f = 0; f < clean.triangles.rows(); ++f)
@@ -77,18 +90,14 @@ TEST(BoundMotion, DenoiseMovesNoVertexFartherThanThreeDeviationsOfTheNoise) {
 }
 
 // A spike of one vertex, 12 deviations out, its neighbours at the noise's level: no surface
-// makes that, it is an outlier of the scan. Denoise puts it back on the finest band's lowpass
+// makes that, it is an outlier of the scan. Denoise puts it back on the mean of its neighbours
 // before it smooths (which would spread it, and the motion bound hold it), and the spike
 // ends within the noise of the clean sphere. Noise alone throws no vertex that far.
 TEST(BoundMotion, DenoisePutsAnImpulseBackInsteadOfHoldingIt) {
-    const Mesh clean = icosphere(4, 1.0);
-    const double h = mean_edge_length(clean.points, clean.triangles);
-    const double sigma = 0.2 * h;
-    const Eigen::MatrixXd n = vertex_normals(clean.points, clean.triangles);
-    std::mt19937 random(3);
-    std::normal_distribution<double> gauss(0.0, sigma);
-    Points noisy = clean.points;
-    for (Eigen::Index v = 0; v < noisy.rows(); ++v) noisy.row(v) += gauss(random) * n.row(v);
+    const NoisySphere s = noisy_sphere();
+    const Mesh& clean = s.clean;
+    const double sigma = s.sigma;
+    Points noisy = s.noisy;
     const SamplingDenoise quiet = denoise_sampling_noise(noisy, clean.triangles, 4, {}, FilterOptions{});
     EXPECT_EQ(quiet.impulses, 0);
     const Eigen::Index spike = 0;
