@@ -23,7 +23,7 @@ cleanup() {
 }
 trap cleanup EXIT
 
-DEBIAN_FRONTEND=noninteractive apt-get install -y -q "$deb" >/dev/null
+DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends "$deb" >/dev/null
 installed=1
 for f in /usr/bin/geofilter "$plugin_dir/libfilter_geofilter.so"; do
     [ -f "$f" ] || { echo "test-deb: FAIL: $f was not installed" >&2; exit 1; }

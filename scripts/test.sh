@@ -63,9 +63,11 @@ if unshare -rn true 2>/dev/null; then
     echo "(configured and built with no network: ${offline[*]})"
 fi
 # -O1 with line tables only: the sanitizers' reports keep file and line, and the build takes
-# about half the time of -O2 with full debug information.
+# about half the time of -O2 with full debug information. Every target a unity build (files
+# compiled several to a unit: the headers and Eigen's instantiations once per unit), which no
+# other tree shares: 392 -> 267 s for this build from an empty compiler cache.
 "${offline[@]}" cmake -S "$top" -B "$asan" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGEOFILTER_SANITIZE=ON \
-    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
+    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DCMAKE_UNITY_BUILD=ON -DCMAKE_UNITY_BUILD_BATCH_SIZE=6 \
     -DGEOFILTER_BUILD_PLUGIN=OFF -DGEOFILTER_BUILD_PYTHON=OFF -DGEOFILTER_BUILD_MPI=OFF >/dev/null
 "${offline[@]}" cmake --build "$asan" -j"$(nproc)"
 (cd "$asan" && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \

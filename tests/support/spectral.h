@@ -47,6 +47,9 @@ inline double mean_radius(const Points& p, const Eigen::RowVector3d& centre = Ei
     return (p.rowwise() - centre).rowwise().norm().mean();
 }
 
+// RMS over the vertices of the distance between two positions of the same points.
+inline double rms_distance(const Points& a, const Points& b) { return std::sqrt((a - b).rowwise().squaredNorm().mean()); }
+
 // Area-weighted RMS of a per-vertex difference: the measure FilterOptions::tolerance bounds.
 inline double area_weighted_rms(const Points& difference, const Eigen::VectorXd& mass) {
     return std::sqrt((mass.array() * difference.rowwise().squaredNorm().array()).sum() / mass.sum());

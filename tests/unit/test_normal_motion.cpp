@@ -3,6 +3,7 @@
 #include "core/denoise/normal_motion.h"
 #include "core/mesh/surface_measures.h"
 #include "shapes.h"
+#include "spectral.h"
 
 #include <gtest/gtest.h>
 
@@ -14,9 +15,7 @@ using namespace geofilter;
 
 namespace {
 
-constexpr double pi = 3.14159265358979323846;
-
-double rms_distance(const Points& a, const Points& b) { return std::sqrt((a - b).rowwise().squaredNorm().mean()); }
+using reference::rms_distance;
 
 Eigen::RowVector3d face_normal(const Points& p, const Triangles& t, Eigen::Index f) {
     const Eigen::RowVector3d a = p.row(t(f, 0));
@@ -27,7 +26,7 @@ double largest_turn_degrees(const Points& a, const Points& b, const Triangles& t
     double largest = 0;
     for (Eigen::Index f = 0; f < t.rows(); ++f)
         largest = std::max(largest, std::acos(std::clamp(face_normal(a, t, f).dot(face_normal(b, t, f)), -1.0, 1.0)));
-    return largest * 180 / pi;
+    return largest * 180 / M_PI;
 }
 
 Points rotated_about_z(const Points& p, double angle) {
@@ -50,7 +49,7 @@ TEST(NormalMotion, ASidewaysDriftIsDroppedAndTheMotionAcrossKept) {
     const Eigen::MatrixXd radial = m.points.rowwise().normalized();
     Points noisy = m.points;
     for (Eigen::Index v = 0; v < noisy.rows(); ++v) noisy.row(v) += gauss(random) * radial.row(v);
-    const Points smoothed = rotated_about_z(m.points, 2 * pi / 180);
+    const Points smoothed = rotated_about_z(m.points, 2 * M_PI / 180);
 
     NormalMotionReport report;
     const Points out = keep_normal_motion(noisy, smoothed, m.triangles, normal_motion_max_turn_degrees, &report);

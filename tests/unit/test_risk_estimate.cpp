@@ -15,6 +15,7 @@
 #include "real_mesh.h"
 #include "run_filter.h"
 #include "shapes.h"
+#include "spectral.h"
 
 #include "spectral.h"
 #include <gtest/gtest.h>
@@ -29,7 +30,8 @@ using namespace geofilter;
 
 namespace {
 
-double rms_distance(const Points& a, const Points& b) { return std::sqrt((a - b).rowwise().squaredNorm().mean()); }
+using reference::rms_distance;
+
 
 // Total standard deviation sigma, as the comparison's noise in random directions.
 Points noised_in_every_direction(const Mesh& m, double sigma, unsigned seed) {

@@ -11,7 +11,6 @@ using namespace geofilter;
 
 namespace {
 
-constexpr double pi = 3.14159265358979323846;
 
 double sphere_volume(const Points& p, const Triangles& t) {
     double v = 0;
@@ -33,7 +32,7 @@ TEST(Volume, AShrunkSphereComesBackToItsRadius) {
     EXPECT_NEAR(report.largest_offset, 0.03, 1e-3);
     EXPECT_NEAR(sphere_volume(out, m.triangles) / sphere_volume(m.points, m.triangles), 1.0, 1e-9);
     EXPECT_LT((out.rowwise().norm().array() - 1.0).abs().maxCoeff(), 2e-4);
-    EXPECT_NEAR(sphere_volume(m.points, m.triangles), 4 * pi / 3, 0.01);  // the test's own premise
+    EXPECT_NEAR(sphere_volume(m.points, m.triangles), 4 * M_PI / 3, 0.01);  // the test's own premise
 }
 
 // Faces wound inwards: the volume is negative, the normals point in; the offset still
