@@ -9,6 +9,7 @@ packages=(
     ccache                                # a compiler cache: the test command's second run rebuilds little
     meshlab                               # MeshLab 2020.09: meshlab, meshlabserver, libmeshlab-common.so
     dpkg-dev                              # apt-get source / dpkg-source, for MeshLab's headers and vcglib (the plugin only)
+    file                                  # what CPack's Debian generator reads the libraries' dependencies with
     qtbase5-dev libqt5opengl5-dev libglew-dev   # what MeshLab's headers include
     libeigen3-dev libsuitesparse-dev      # the core: Eigen and CHOLMOD
     libmumps-seq-dev                      # exact solves of sharp complex pole pairs (sequential MUMPS)
