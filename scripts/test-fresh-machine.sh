@@ -13,6 +13,7 @@ top=$(cd "$(dirname "$0")/.." && pwd)
 keep=no
 if [ "${1:-}" = --keep ]; then keep=yes; shift; fi
 dir=${1:-$(mktemp -d /tmp/geofilter-fresh.XXXXXX)}
+mkdir -p "$dir"
 root=$dir/root
 [ "$(id -u)" -eq 0 ] || { echo "test-fresh-machine: needs root (debootstrap, chroot)" >&2; exit 1; }
 if ! command -v debootstrap >/dev/null; then
