@@ -32,8 +32,10 @@ echo "== test-fresh-machine: a minimal Debian 12 in $root"
 debootstrap --variant=minbase bookworm "$root" >"$dir/debootstrap.log" 2>&1 ||
     { tail -n 20 "$dir/debootstrap.log" >&2; exit 1; }
 # What any machine has and a bare folder lacks: its own host name in /etc/hosts (Open MPI
-# waits a minute on every three-rank run without it) and a resolver.
+# waits a minute on every three-rank run without it), a resolver, and this machine's way to
+# Debian's archive (its apt sources and settings, as a new machine of its kind gets them).
 cp /etc/hosts /etc/resolv.conf "$root/etc/"
+cp -r /etc/apt/sources.list* /etc/apt/apt.conf.d "$root/etc/apt/" 2>/dev/null || true
 for d in proc sys dev dev/pts dev/shm; do
     mount --bind "/$d" "$root/$d"
     mounted+=("$root/$d")
