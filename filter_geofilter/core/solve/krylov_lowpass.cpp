@@ -103,72 +103,103 @@ Eigen::MatrixXd krylov_lowpass(const Laplacian& laplacian, const Eigen::MatrixXd
     Eigen::VectorXd inverse_mass = Eigen::VectorXd::Zero(mass.size());
     for (Eigen::Index i = 0; i < mass.size(); ++i)
         if (mass[i] > 0) inverse_mass[i] = 1 / mass[i];
-    const auto apply_a = [&](const Eigen::VectorXd& x) -> Eigen::VectorXd { return inverse_mass.asDiagonal() * (k * x); };
-    const auto mass_dot = [&](const Eigen::VectorXd& x, const Eigen::VectorXd& y) { return (mass.array() * x.array() * y.array()).sum(); };
+    // The columns' processes are independent but advance together: one product with K per
+    // step for all of them (K is symmetric, so K^T x, whose rows Eigen shares out among the
+    // threads), which reads K once instead of once per column.
+    const auto apply_a = [&](const Eigen::MatrixXd& x, Eigen::MatrixXd& out) {
+        out.noalias() = k.transpose() * x;
+        out = inverse_mass.asDiagonal() * out;
+    };
+    const auto mass_dot = [&](const Eigen::MatrixXd& x, const Eigen::MatrixXd& y, Eigen::Index c) {
+        return (mass.array() * x.col(c).array() * y.col(c).array()).sum();
+    };
+    const Eigen::Index columns = values.cols();
     // Each column's share of the Frobenius budget.
-    const double allowed_per_column = allowed_error / std::sqrt(static_cast<double>(std::max<Eigen::Index>(values.cols(), 1)));
+    const double allowed_per_column = allowed_error / std::sqrt(static_cast<double>(std::max<Eigen::Index>(columns, 1)));
 
     Eigen::MatrixXd out = values;
     KrylovReport r;
-    double squared_bound = 0;
-    for (Eigen::Index column = 0; column < values.cols(); ++column) {
-        const Eigen::VectorXd start = apply_a(values.col(column));
-        const double start_norm = std::sqrt(mass_dot(start, start));
-        if (!(start_norm > 0)) continue;  // in the kernel of A: G(A) b = b
-
-        // The Lanczos recurrence; `step` advances it by one, recording alpha and beta on the
-        // first pass and replaying them on the second.
-        std::vector<double> alpha, beta;
-        Eigen::VectorXd previous, current;
-        const auto restart = [&] {
-            previous = Eigen::VectorXd::Zero(start.size());
-            current = start / start_norm;
-        };
-        const auto step = [&](std::size_t j, bool record) {
-            Eigen::VectorXd w = apply_a(current);
-            const double a = record ? mass_dot(w, current) : alpha[j];
-            w -= a * current;
-            if (j > 0) w -= beta[j - 1] * previous;
-            const double b = record ? std::sqrt(mass_dot(w, w)) : beta[j];
+    Eigen::MatrixXd start;
+    apply_a(values, start);
+    std::vector<double> start_norm(static_cast<std::size_t>(columns));
+    // A column in the kernel of A (G(A) b = b) or whose process has ended takes no more steps.
+    std::vector<bool> running(static_cast<std::size_t>(columns));
+    for (Eigen::Index c = 0; c < columns; ++c) {
+        start_norm[c] = std::sqrt(mass_dot(start, start, c));
+        running[c] = start_norm[c] > 0;
+    }
+    // The Lanczos recurrence; `step` advances the running columns by one, recording alpha and
+    // beta on the first pass and replaying them on the second.
+    std::vector<std::vector<double>> alpha(static_cast<std::size_t>(columns)), beta(alpha);
+    Eigen::MatrixXd previous, current, w;
+    const auto restart = [&] {
+        previous = Eigen::MatrixXd::Zero(start.rows(), columns);
+        current = start;
+        for (Eigen::Index c = 0; c < columns; ++c)
+            if (start_norm[c] > 0) current.col(c) /= start_norm[c];
+    };
+    const auto step = [&](std::size_t j, bool record, const std::vector<bool>& moving) {
+        apply_a(current, w);
+        for (Eigen::Index c = 0; c < columns; ++c) {
+            if (!moving[c]) continue;
+            const double a = record ? mass_dot(w, current, c) : alpha[c][j];
+            w.col(c) -= a * current.col(c);
+            if (j > 0) w.col(c) -= beta[c][j - 1] * previous.col(c);
+            const double b = record ? std::sqrt(mass_dot(w, w, c)) : beta[c][j];
             if (record) {
-                alpha.push_back(a);
-                beta.push_back(b);
+                alpha[c].push_back(a);
+                beta[c].push_back(b);
             }
-            previous.swap(current);
-            if (b > 0) current = w / b;
-        };
+            previous.col(c) = current.col(c);
+            if (b > 0) current.col(c) = w.col(c) / b;
+        }
+    };
 
-        restart();
-        TridiagonalQuotient quotient;
-        double bound = INFINITY;
-        int steps = 0;
-        while (true) {
-            step(static_cast<std::size_t>(steps), true);
-            ++steps;
-            if (steps % 4 == 0 || beta.back() == 0 || steps == max_steps) {
-                const std::vector<double> off(beta.begin(), beta.end() - 1);
-                quotient = highpass_quotient_of_tridiagonal(alpha, off, q);
-                bound = start_norm * beta.back() * quotient.error_factor;
-                if (bound <= allowed_per_column) break;
-                if (steps >= max_steps) {
+    restart();
+    std::vector<TridiagonalQuotient> quotient(static_cast<std::size_t>(columns));
+    std::vector<double> bound(static_cast<std::size_t>(columns), 0.0);
+    std::vector<int> steps(static_cast<std::size_t>(columns), 0);
+    for (int taken = 0; std::count(running.begin(), running.end(), true) > 0;) {
+        step(static_cast<std::size_t>(taken), true, running);
+        ++taken;
+        for (Eigen::Index c = 0; c < columns; ++c) {
+            if (!running[c]) continue;
+            steps[c] = taken;
+            if (taken % 4 == 0 || beta[c].back() == 0 || taken == max_steps) {
+                const std::vector<double> off(beta[c].begin(), beta[c].end() - 1);
+                quotient[c] = highpass_quotient_of_tridiagonal(alpha[c], off, q);
+                bound[c] = start_norm[c] * beta[c].back() * quotient[c].error_factor;
+                if (bound[c] <= allowed_per_column) {
+                    running[c] = false;
+                } else if (taken >= max_steps) {
                     r.converged = false;
-                    r.iterations = steps;
-                    r.error_bound = bound;
+                    r.iterations = taken;
+                    r.error_bound = bound[c];
                     if (report) *report = r;
                     return values;
                 }
             }
         }
-        // The same basis again, summed with the coefficients.
-        restart();
-        Eigen::VectorXd removed = Eigen::VectorXd::Zero(start.size());
-        for (int j = 0; j < steps; ++j) {
-            removed += quotient.coefficients[j] * current;
-            if (j + 1 < steps) step(static_cast<std::size_t>(j), false);
+    }
+    // The same bases again, each column summed with its coefficients.
+    restart();
+    Eigen::MatrixXd removed = Eigen::MatrixXd::Zero(start.rows(), columns);
+    const int most = *std::max_element(steps.begin(), steps.end());
+    std::vector<bool> moving(static_cast<std::size_t>(columns));
+    for (int j = 0; j < most; ++j) {
+        for (Eigen::Index c = 0; c < columns; ++c) {
+            moving[c] = j < steps[c];
+            if (moving[c]) removed.col(c) += quotient[c].coefficients[j] * current.col(c);
+            moving[c] = j + 1 < steps[c];
         }
-        out.col(column) -= start_norm * removed;
-        r.iterations = std::max(r.iterations, steps);
-        squared_bound += bound * bound;
+        if (j + 1 < most) step(static_cast<std::size_t>(j), false, moving);
+    }
+    double squared_bound = 0;
+    for (Eigen::Index c = 0; c < columns; ++c) {
+        if (!(start_norm[c] > 0)) continue;
+        out.col(c) -= start_norm[c] * removed.col(c);
+        r.iterations = std::max(r.iterations, steps[c]);
+        squared_bound += bound[c] * bound[c];
     }
     r.error_bound = std::sqrt(squared_bound);
     if (report) *report = r;
