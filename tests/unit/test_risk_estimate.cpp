@@ -77,6 +77,45 @@ TEST(RiskEstimate, DegreesOfFreedomOfALinearFilterAreItsTrace) {
         }
 }
 
+// Given a smoother for the perturbed input, the estimate runs it on that input alone (on
+// another thread, alongside the first on the input) and scores exactly as one smoother run
+// twice in turn: two cotangent lowpasses with caches of their own, as Denoise runs them.
+TEST(RiskEstimate, APerturbedRunAlongsideScoresAsTheRunsInTurn) {
+    const Mesh m = icosphere(4, 1.0);
+    const double h = mean_edge_length(m.points, m.triangles);
+    const Points noisy = noised_along_normals(m, 0.3 * h, 5);
+    const TransferFunction g = design_butterworth_lowpass(frequency_of_radius(1.5 * h), 4);
+    FilterOptions options;
+    options.op = Operator::IntrinsicDelaunay;
+    const Eigen::VectorXd variance = Eigen::VectorXd::Constant(m.points.rows(), 0.09 * h * h);
+    const Smoother in_turn = [&](const Points& y) { return apply_filter(y, m.triangles, g, options); };
+    FilterCache on_input, on_perturbed;
+    std::vector<double> first_coordinate;  // what each smoother was given
+    double perturbed_coordinate = 0;
+    const Smoother input_only = [&](const Points& y) {
+        first_coordinate.push_back(y(0, 0));
+        return apply_filter(y, m.triangles, g, options, nullptr, &on_input);
+    };
+    const Smoother perturbed_only = [&](const Points& y) {
+        perturbed_coordinate = y(0, 0);
+        return apply_filter(y, m.triangles, g, options, nullptr, &on_perturbed);
+    };
+    for (NoiseModel model : {NoiseModel::AlongNormals, NoiseModel::Isotropic}) {
+        SCOPED_TRACE(noise_model_name(model));
+        first_coordinate.clear();
+        const RiskEstimate a = estimate_risk(noisy, m.triangles, in_turn, 0.01 * h, 3, model, variance);
+        const RiskEstimate b = estimate_risk(noisy, m.triangles, input_only, 0.01 * h, 3, model, variance, nullptr, {}, {},
+                                             perturbed_only);
+        ASSERT_EQ(first_coordinate.size(), 1u);
+        EXPECT_EQ(first_coordinate[0], noisy(0, 0));
+        EXPECT_NE(perturbed_coordinate, noisy(0, 0));
+        EXPECT_GT(a.degrees_of_freedom, 0.01 * a.observations);  // a lowpass that passes some noise
+        EXPECT_NEAR(b.degrees_of_freedom, a.degrees_of_freedom, 1e-6 * a.observations);
+        EXPECT_NEAR(b.risk, a.risk, 1e-9 * h * h);
+        EXPECT_EQ(b.residual, a.residual);
+    }
+}
+
 // The identity passes everything: its risk is the noise itself, s^2 per noisy number; a
 // filter to the centroid passes nothing (dof 0), its risk the spread about the centroid less
 // the noise the residual counted.

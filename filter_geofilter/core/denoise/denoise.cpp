@@ -224,26 +224,35 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
         o.op = design.op;
         o.tolerance = std::min(options.tolerance, 1e-3 * step / size);
         const auto t_candidate = std::chrono::steady_clock::now();
-        int krylov_steps = 0;
-        const Smoother smooth = [&](const Points& y) {
-            const bool perturbed = run % 2 == 1;
-            if (options.progress)
-                o.progress = [&, base = run](double fraction, const std::string& stage) {
-                    return options.progress(scoring_share * (base + fraction) / runs,
+        // An operator built from the positions gives the perturbed run a cache of its own, so
+        // that run goes on another thread alongside the input's (estimate_risk); it reports no
+        // progress (a front end's progress bar belongs to the thread that called it).
+        const bool alongside = operator_uses_positions(design.op);
+        const int base = run;
+        int krylov_steps[2] = {0, 0};
+        const auto filter_run = [&](const Points& at, bool perturbed) {
+            FilterOptions mine = o;
+            mine.progress = nullptr;
+            if (options.progress && !(perturbed && alongside))
+                mine.progress = [&, perturbed](double fraction, const std::string& stage) {
+                    return options.progress(scoring_share * (base + (perturbed ? 1 : 0) + fraction) / runs,
                                             "Denoise: " + design.origin + (perturbed ? " (perturbed)" : "") + ": " + stage);
                 };
-            FilterCache& cache = perturbed && operator_uses_positions(design.op) ? on_perturbed : on_input;
             FilterReport report;
-            Points out = apply_filter(y, scored_triangles, design.g, o, &report, &cache);
-            krylov_steps = std::max(krylov_steps, report.krylov_steps);
-            ++run;
+            Points out = apply_filter(at, scored_triangles, design.g, mine, &report, perturbed && alongside ? &on_perturbed : &on_input);
+            krylov_steps[perturbed ? 1 : 0] = report.krylov_steps;
             return out;
         };
+        int calls = 0;
+        const Smoother smooth = [&](const Points& at) { return filter_run(at, !alongside && calls++ == 1); };
+        const Smoother smooth_perturbed =
+            alongside ? Smoother([&](const Points& at) { return filter_run(at, true); }) : Smoother();
         const RiskEstimate score = estimate_risk(
             scored_points, scored_triangles, smooth, step, denoise_probe_seed, best.noise.model, scored_variance, nullptr,
             [&](const Points& at, const Points& f) { return denoise_output(at, f, scored_triangles, surface, best.noise.model, scored_sigma); },
-            patches.counted);
-        best.krylov_steps[static_cast<std::size_t>(index)] = krylov_steps;
+            patches.counted, smooth_perturbed);
+        run += 2;
+        best.krylov_steps[static_cast<std::size_t>(index)] = std::max(krylov_steps[0], krylov_steps[1]);
         best.scoring_seconds[static_cast<std::size_t>(index)] =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - t_candidate).count();
         best.scores[static_cast<std::size_t>(index)].second = score;

@@ -2,13 +2,14 @@
 #include "core/mesh/surface_measures.h"
 
 #include <cmath>
+#include <future>
 #include <random>
 
 namespace geofilter {
 
 RiskEstimate estimate_risk(const Points& y, const Triangles& triangles, const Smoother& smooth, double step,
                            std::uint64_t seed, NoiseModel model, const Eigen::VectorXd& noise_variance, Points* smoothed, const Finish& finish,
-                           const std::vector<bool>& counted) {
+                           const std::vector<bool>& counted, const Smoother& smooth_perturbed) {
     if (!counted.empty() && counted.size() != static_cast<size_t>(y.rows()))
         throw Error("the risk estimate's vertex flags must number the vertices (" + std::to_string(y.rows()) + "), not " +
                     std::to_string(counted.size()));
@@ -34,8 +35,15 @@ RiskEstimate estimate_risk(const Points& y, const Triangles& triangles, const Sm
     }
 
     const Points perturbed = y + step * probe;
-    const Points f_raw = smooth(y);
-    const Points f_perturbed = smooth(perturbed);
+    Points f_raw, f_perturbed;
+    if (smooth_perturbed) {
+        std::future<Points> other = std::async(std::launch::async, [&] { return smooth_perturbed(perturbed); });
+        f_raw = smooth(y);
+        f_perturbed = other.get();
+    } else {
+        f_raw = smooth(y);
+        f_perturbed = smooth(perturbed);
+    }
     const Points f = finish ? finish(y, f_raw) : f_raw;
 
     RiskEstimate r;

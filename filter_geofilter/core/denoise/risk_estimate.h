@@ -61,8 +61,12 @@ using Finish = std::function<Points(const Points& y, const Points& smoothed)>;
 // lowpass 1.8x farther from the truth. `smoothed` receives the (finished) result.
 // `counted` (one flag per vertex, or empty for all): the vertices the means run over (the
 // interior of patches cut out of a larger mesh: patches.h); the probe still moves them all.
+// `smooth_perturbed`, when given, smooths the perturbed input instead of `smooth`, on another
+// thread while `smooth` runs: the two runs are independent, and on a smoother that keeps its
+// own state for each (Denoise's caches) the second core does the other half of the work.
 RiskEstimate estimate_risk(const Points& y, const Triangles& triangles, const Smoother& smooth, double step,
                            std::uint64_t seed, NoiseModel model, const Eigen::VectorXd& noise_variance, Points* smoothed = nullptr,
-                           const Finish& finish = {}, const std::vector<bool>& counted = {});
+                           const Finish& finish = {}, const std::vector<bool>& counted = {},
+                           const Smoother& smooth_perturbed = {});
 
 } // namespace geofilter
