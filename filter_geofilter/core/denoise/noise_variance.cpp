@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <thread>
 #include <unordered_map>
 #include <vector>
 
@@ -83,35 +84,53 @@ NoiseVariance estimate_noise_variance(const Points& points, const Triangles& tri
     // noise of unit variance.
     const VertexNeighbours nb = vertex_neighbours(triangles, points.rows());
     out.per_vertex = Eigen::VectorXd::Zero(points.rows());
-    std::vector<Eigen::Index> mark(static_cast<std::size_t>(points.rows()), -1);
-    std::vector<int> ring, next;
-    std::vector<double> squared;
-    std::unordered_map<std::size_t, double> order_square;  // by neighbourhood size
+    // The neighbourhoods are independent: blocks of vertices go to the machine's threads, each
+    // with buffers of its own, and write the middle value and the count of each.
+    Eigen::VectorXd middle_square = Eigen::VectorXd::Zero(points.rows());
+    std::vector<int> counted(static_cast<std::size_t>(points.rows()), 0);
+    const auto measure_block = [&](Eigen::Index first, Eigen::Index last) {
+        std::vector<int> mark(static_cast<std::size_t>(points.rows()), -1);
+        std::vector<int> ring, next;
+        std::vector<double> squared;
+        for (Eigen::Index i = first; i < last; ++i) {
+            if (!has_normal[static_cast<std::size_t>(i)]) continue;
+            squared.clear();
+            ring.assign(1, static_cast<int>(i));
+            mark[static_cast<std::size_t>(i)] = static_cast<int>(i);
+            while (!ring.empty() && squared.size() < static_cast<std::size_t>(noise_neighbourhood_vertices)) {
+                next.clear();
+                for (int v : ring) {
+                    if (has_normal[static_cast<std::size_t>(v)]) squared.push_back(residual[v] * residual[v]);
+                    for (int j = nb.start[v]; j < nb.start[v + 1]; ++j) {
+                        const int w = nb.index[j];
+                        if (mark[static_cast<std::size_t>(w)] == i) continue;
+                        mark[static_cast<std::size_t>(w)] = static_cast<int>(i);
+                        next.push_back(w);
+                    }
+                }
+                ring.swap(next);
+            }
+            const auto middle = squared.begin() + static_cast<std::ptrdiff_t>(squared.size() / 2);
+            std::nth_element(squared.begin(), middle, squared.end());
+            middle_square[i] = *middle;
+            counted[static_cast<std::size_t>(i)] = static_cast<int>(squared.size());
+        }
+    };
+    const Eigen::Index threads = points.rows() >= 50000 ? std::clamp<Eigen::Index>(std::thread::hardware_concurrency(), 1, 4) : 1;
+    const Eigen::Index block = (points.rows() + threads - 1) / threads;
+    std::vector<std::thread> helpers;
+    for (Eigen::Index t = 1; t < threads && t * block < points.rows(); ++t)
+        helpers.emplace_back(measure_block, t * block, std::min(points.rows(), (t + 1) * block));
+    measure_block(0, std::min(points.rows(), block));
+    for (std::thread& helper : helpers) helper.join();
+    std::unordered_map<int, double> order_square;  // by neighbourhood size
     double sum = 0;
     for (Eigen::Index i = 0; i < points.rows(); ++i) {
         if (!has_normal[static_cast<std::size_t>(i)]) continue;
-        squared.clear();
-        ring.assign(1, static_cast<int>(i));
-        mark[static_cast<std::size_t>(i)] = i;
-        while (!ring.empty() && squared.size() < static_cast<std::size_t>(noise_neighbourhood_vertices)) {
-            next.clear();
-            for (int v : ring) {
-                if (has_normal[static_cast<std::size_t>(v)]) squared.push_back(residual[v] * residual[v]);
-                for (int j = nb.start[v]; j < nb.start[v + 1]; ++j) {
-                    const int w = nb.index[j];
-                    if (mark[static_cast<std::size_t>(w)] == i) continue;
-                    mark[static_cast<std::size_t>(w)] = i;
-                    next.push_back(w);
-                }
-            }
-            ring.swap(next);
-        }
-        const auto middle = squared.begin() + static_cast<std::ptrdiff_t>(squared.size() / 2);
-        std::nth_element(squared.begin(), middle, squared.end());
-        auto [expected, added] = order_square.try_emplace(squared.size(), 0.0);
-        if (added)
-            expected->second = expected_order_square(static_cast<int>(squared.size()), static_cast<int>(squared.size() / 2));
-        out.per_vertex[i] = *middle / expected->second / removed;
+        const int m = counted[static_cast<std::size_t>(i)];
+        auto [expected, added] = order_square.try_emplace(m, 0.0);
+        if (added) expected->second = expected_order_square(m, m / 2);
+        out.per_vertex[i] = middle_square[i] / expected->second / removed;
         sum += out.per_vertex[i];
     }
     for (Eigen::Index i = 0; i < points.rows(); ++i) {
