@@ -224,10 +224,16 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
         o.op = design.op;
         o.tolerance = std::min(options.tolerance, 1e-3 * step / size);
         const auto t_candidate = std::chrono::steady_clock::now();
-        // An operator built from the positions gives the perturbed run a cache of its own, so
-        // that run goes on another thread alongside the input's (estimate_risk); it reports no
-        // progress (a front end's progress bar belongs to the thread that called it).
-        const bool alongside = operator_uses_positions(design.op);
+        // An operator built from the positions gives the perturbed run a cache of its own. That
+        // run then goes on another thread alongside the input's (estimate_risk), unless an
+        // external solver runs the solves (geofilter-mpi's, collective over its ranks: one solve
+        // at a time). Going alongside, it reports no progress (a front end's progress bar
+        // belongs to the thread that called it), and both runs solve every pair by CG: an exact
+        // pair's factorisation (MUMPS) is not made from two threads at once. A Butterworth
+        // lowpass of order 3 or more never takes one anyway (exact_pair.h).
+        const bool own_cache = operator_uses_positions(design.op);
+        const bool alongside = own_cache && !options.external_solver;
+        if (alongside) o.complex_factorization = nullptr;
         const int base = run;
         int krylov_steps[2] = {0, 0};
         const auto filter_run = [&](const Points& at, bool perturbed) {
@@ -239,12 +245,12 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
                                             "Denoise: " + design.origin + (perturbed ? " (perturbed)" : "") + ": " + stage);
                 };
             FilterReport report;
-            Points out = apply_filter(at, scored_triangles, design.g, mine, &report, perturbed && alongside ? &on_perturbed : &on_input);
+            Points out = apply_filter(at, scored_triangles, design.g, mine, &report, perturbed && own_cache ? &on_perturbed : &on_input);
             krylov_steps[perturbed ? 1 : 0] = report.krylov_steps;
             return out;
         };
         int calls = 0;
-        const Smoother smooth = [&](const Points& at) { return filter_run(at, !alongside && calls++ == 1); };
+        const Smoother smooth = [&](const Points& at) { return filter_run(at, calls++ == 1); };
         const Smoother smooth_perturbed =
             alongside ? Smoother([&](const Points& at) { return filter_run(at, true); }) : Smoother();
         const RiskEstimate score = estimate_risk(
