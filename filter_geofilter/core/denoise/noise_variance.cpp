@@ -116,7 +116,7 @@ NoiseVariance estimate_noise_variance(const Points& points, const Triangles& tri
             counted[static_cast<std::size_t>(i)] = static_cast<int>(squared.size());
         }
     };
-    const Eigen::Index threads = points.rows() >= 50000 ? std::clamp<Eigen::Index>(std::thread::hardware_concurrency(), 1, 4) : 1;
+    const Eigen::Index threads = std::clamp<Eigen::Index>(std::thread::hardware_concurrency(), 1, 4);
     const Eigen::Index block = (points.rows() + threads - 1) / threads;
     std::vector<std::thread> helpers;
     for (Eigen::Index t = 1; t < threads && t * block < points.rows(); ++t)

@@ -35,15 +35,10 @@ RiskEstimate estimate_risk(const Points& y, const Triangles& triangles, const Sm
     }
 
     const Points perturbed = y + step * probe;
-    Points f_raw, f_perturbed;
-    if (smooth_perturbed) {
-        std::future<Points> other = std::async(std::launch::async, [&] { return smooth_perturbed(perturbed); });
-        f_raw = smooth(y);
-        f_perturbed = other.get();
-    } else {
-        f_raw = smooth(y);
-        f_perturbed = smooth(perturbed);
-    }
+    std::future<Points> alongside;
+    if (smooth_perturbed) alongside = std::async(std::launch::async, [&] { return smooth_perturbed(perturbed); });
+    const Points f_raw = smooth(y);
+    const Points f_perturbed = alongside.valid() ? alongside.get() : smooth(perturbed);
     const Points f = finish ? finish(y, f_raw) : f_raw;
 
     RiskEstimate r;

@@ -159,7 +159,7 @@ Eigen::MatrixXd krylov_lowpass(const Laplacian& laplacian, const Eigen::MatrixXd
     std::vector<TridiagonalQuotient> quotient(static_cast<std::size_t>(columns));
     std::vector<double> bound(static_cast<std::size_t>(columns), 0.0);
     std::vector<int> steps(static_cast<std::size_t>(columns), 0);
-    for (int taken = 0; std::count(running.begin(), running.end(), true) > 0;) {
+    for (int taken = 0; std::find(running.begin(), running.end(), true) != running.end();) {
         step(static_cast<std::size_t>(taken), true, running);
         ++taken;
         for (Eigen::Index c = 0; c < columns; ++c) {
@@ -188,8 +188,7 @@ Eigen::MatrixXd krylov_lowpass(const Laplacian& laplacian, const Eigen::MatrixXd
     std::vector<bool> moving(static_cast<std::size_t>(columns));
     for (int j = 0; j < most; ++j) {
         for (Eigen::Index c = 0; c < columns; ++c) {
-            moving[c] = j < steps[c];
-            if (moving[c]) removed.col(c) += quotient[c].coefficients[j] * current.col(c);
+            if (j < steps[c]) removed.col(c) += quotient[c].coefficients[j] * current.col(c);
             moving[c] = j + 1 < steps[c];
         }
         if (j + 1 < most) step(static_cast<std::size_t>(j), false, moving);
