@@ -463,6 +463,11 @@ RunOutput filter_surface(const FilterSpec& spec, const ParameterValues& given, c
         }
         out.log.push_back("  leaving the mesh as it is (the noise's own variance): " + format_number(1e6 * sampled->input_risk) +
                           (sampled->input_kept ? "  <- chosen" : ""));
+        const SamplingDenoise::Seconds& t = sampled->seconds;
+        out.log.push_back("Denoise's time: " + format_number(sampled->report.seconds_total, 3) + " s (the noise's variance " +
+                          format_number(t.variance, 2) + ", its direction " + (sampled->scoring_patches ? "and the patches " : "") +
+                          format_number(t.direction, 2) + ", scoring " + format_number(t.scoring, 2) +
+                          (sampled->input_kept ? std::string(")") : ", the chosen lowpass and what follows it " + format_number(t.final_run, 2) + ")"));
         if (sampled->input_kept) {
             const std::string why = "no lowpass scored below leaving the mesh as it is: the noise (" + format_number(sigma) +
                                     " along the normals) is smaller than what the mildest of them would take of the"

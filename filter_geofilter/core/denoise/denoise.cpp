@@ -152,6 +152,13 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
                                        const DenoiseSurface& surface, const FilterOptions& options,
                                        int score_on_patches_above) {
     const auto t0 = std::chrono::steady_clock::now();
+    auto t_stage = t0;
+    const auto stage_done = [&t_stage]() {
+        const auto now = std::chrono::steady_clock::now();
+        const double seconds = std::chrono::duration<double>(now - t_stage).count();
+        t_stage = now;
+        return seconds;
+    };
     // Refuses a bad mesh (bad indices, NaN) with the filter's own message before measuring it.
     const PreparedMesh usable = prepare_mesh(points, triangles);
     const double h = mean_edge_length(usable.points, usable.triangles);
@@ -179,6 +186,7 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
         best.impulses += static_cast<int>(best.variance.impulses.size());
         best.variance = estimate_noise_variance(y, triangles, options);
     }
+    best.seconds.variance = stage_done();
     Points usable_y = usable.points;
     for (Eigen::Index k = 0; k < usable_y.rows(); ++k) usable_y.row(k) = y.row(usable.active_vertex[static_cast<std::size_t>(k)]);
     // A cloud's place along the surface is its sampling (DenoiseSurface).
@@ -197,6 +205,7 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
                                   score_on_patches_above / denoise_scoring_patches, denoise_scoring_margin);
         best.scoring_patches = patches.patches;
     }
+    best.seconds.direction = stage_done();
     const Points& scored_points = best.scoring_patches ? patches.mesh.points : y;
     Eigen::VectorXd scored_variance = best.variance.per_vertex;
     if (best.scoring_patches) {
@@ -275,6 +284,7 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
         first = last;
     }
     best.design = candidates.at(static_cast<std::size_t>(chosen));
+    best.seconds.scoring = stage_done();
     // Leaving the mesh as it is passes every noisy number, so its risk is the noise's own.
     // Measured where it matters: the man with noise of 0.1 mean edge lengths in random
     // directions, where every lowpass ends farther from the truth than the input (0.561e-3
@@ -305,6 +315,7 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
     best.points = denoise_output(y, apply_filter(y, triangles, best.design.g, o, &best.report), triangles, surface,
                                  best.noise.model, sigma, best.normal_motion ? &*best.normal_motion : nullptr,
                                  best.motion_bound ? &*best.motion_bound : nullptr, &best.volume);
+    best.seconds.final_run = stage_done();
     best.report.seconds_total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return best;
 }

@@ -197,6 +197,11 @@ struct SamplingDenoise {
     // scored at all).
     std::vector<int> krylov_steps;
     std::vector<double> scoring_seconds;  // per candidate, 0 when not scored
+    // Where the time went: the noise's variance (impulse rounds included), its direction and
+    // the scoring patches, the scoring, and the chosen lowpass's run with what follows it.
+    struct Seconds {
+        double variance = 0, direction = 0, scoring = 0, final_run = 0;
+    } seconds;
     NoiseDirection noise;  // the noise model the scores assumed
     NoiseVariance variance;  // and the noise's variance they assumed
     // Impulses (noise_variance.h) put back on the mean of their neighbours before the rest: a
