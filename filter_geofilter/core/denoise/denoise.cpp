@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 namespace geofilter {
 
@@ -169,7 +170,10 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
     SamplingDenoise best;
     // The variance of each noisy number: in every direction too, the noise along the normals
     // is one of three equal axes.
-    best.variance = estimate_noise_variance(points, triangles, options);
+    // The umbrella runs of the noise estimate and, when it is the umbrella's, the final
+    // lowpass share one mesh and operator, at any size.
+    FilterCache umbrella(std::numeric_limits<Eigen::Index>::max());
+    best.variance = estimate_noise_variance(points, triangles, options, &umbrella);
     Points y = points;
     // An impulse goes back to the mean of its neighbours: its neighbours are clean (it stands
     // out twice as far as any), while the finest band's lowpass keeps half of a spike. Impulses
@@ -184,7 +188,7 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
             y.row(i) = mean / (neighbours.start[i + 1] - neighbours.start[i]);
         }
         best.impulses += static_cast<int>(best.variance.impulses.size());
-        best.variance = estimate_noise_variance(y, triangles, options);
+        best.variance = estimate_noise_variance(y, triangles, options, &umbrella);
     }
     best.seconds.variance = stage_done();
     Points usable_y = usable.points;
@@ -312,7 +316,8 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
         best.normal_motion.emplace();
         best.motion_bound.emplace();
     }
-    best.points = denoise_output(y, apply_filter(y, triangles, best.design.g, o, &best.report), triangles, surface,
+    best.points = denoise_output(y, apply_filter(y, triangles, best.design.g, o, &best.report,
+                                                     best.design.op == Operator::Umbrella ? &umbrella : nullptr), triangles, surface,
                                  best.noise.model, sigma, best.normal_motion ? &*best.normal_motion : nullptr,
                                  best.motion_bound ? &*best.motion_bound : nullptr, &best.volume);
     best.seconds.final_run = stage_done();

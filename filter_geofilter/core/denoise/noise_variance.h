@@ -29,6 +29,7 @@
 #pragma once
 
 #include "core/filter/filter.h"
+#include "core/filter/filter_cache.h"
 #include "core/denoise/noise_direction.h"
 #include "core/types.h"
 
@@ -61,6 +62,10 @@ struct NoiseVariance {
 
 // The normals are smoothed_vertex_normals (noise_direction.h). `options` gives the solver and
 // its tolerance (the operator is always the umbrella). Throws Error on a mesh without faces.
-NoiseVariance estimate_noise_variance(const Points& points, const Triangles& triangles, const FilterOptions& options);
+// The umbrella's two runs share `umbrella_cache` when given (else one of their own): the
+// umbrella ignores the positions, so a caller's later umbrella runs on the same triangles
+// (another round, the final lowpass) build nothing again. It should keep any size.
+NoiseVariance estimate_noise_variance(const Points& points, const Triangles& triangles, const FilterOptions& options,
+                                      FilterCache* umbrella_cache = nullptr);
 
 } // namespace geofilter
