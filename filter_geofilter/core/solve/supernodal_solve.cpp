@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 namespace geofilter::detail {
@@ -102,16 +103,33 @@ void apply_supernodal_inverse(const cholmod_factor& factor, Eigen::MatrixXd& x, 
     if (x.rows() != Eigen::Index(factor.n)) throw std::logic_error("apply_supernodal_inverse: wrong number of rows");
     int tallest = 0;
     for (int s = 0; s < sn.count; ++s) tallest = std::max(tallest, sn.row_start[s + 1] - sn.row_start[s]);
-    std::vector<double> buffer(std::size_t(tallest) * 4);
-    for (int k = 0; k < times; ++k)
-        for (Eigen::Index c = 0; c < x.cols();) {
-            switch (std::min<Eigen::Index>(x.cols() - c, 4)) {
-            case 4: sweep<4>(sn, x, c, buffer); c += 4; break;
-            case 3: sweep<3>(sn, x, c, buffer); c += 3; break;
-            case 2: sweep<2>(sn, x, c, buffer); c += 2; break;
-            default: sweep<1>(sn, x, c, buffer); c += 1; break;
+    // The columns are independent, so two threads sweep half of them each: a single thread
+    // reads the factor at well under the machine's bandwidth (the sweep's gathers wait on
+    // the caches). A Preview's gain change on the 100k torus, 7 CG iterations of sweeps on
+    // three columns: 0.56-0.67 s on one thread, 0.42-0.51 s on two, four alternated runs.
+    // Each column's arithmetic is the same either way. Below ~1e5 factor entries a sweep
+    // takes about as long as starting a thread.
+    const auto columns = [&](Eigen::Index first, Eigen::Index last) {
+        std::vector<double> buffer(std::size_t(tallest) * 4);
+        for (int k = 0; k < times; ++k)
+            for (Eigen::Index c = first; c < last;) {
+                switch (std::min<Eigen::Index>(last - c, 4)) {
+                case 4: sweep<4>(sn, x, c, buffer); c += 4; break;
+                case 3: sweep<3>(sn, x, c, buffer); c += 3; break;
+                case 2: sweep<2>(sn, x, c, buffer); c += 2; break;
+                default: sweep<1>(sn, x, c, buffer); c += 1; break;
+                }
             }
-        }
+    };
+    const long entries = sn.value_start[sn.count];
+    if (x.cols() >= 2 && entries >= 100000 && std::thread::hardware_concurrency() >= 2) {
+        const Eigen::Index half = (x.cols() + 1) / 2;
+        std::thread other(columns, half, x.cols());
+        columns(0, half);
+        other.join();
+    } else {
+        columns(0, x.cols());
+    }
 }
 
 Eigen::MatrixXd solve_supernodal(const cholmod_factor& factor, const Eigen::MatrixXd& b, int times) {
