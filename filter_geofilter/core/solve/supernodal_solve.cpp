@@ -1,6 +1,7 @@
 #include "core/solve/supernodal_solve.h"
 
 #include <algorithm>
+#include <atomic>
 #include <stdexcept>
 #include <thread>
 #include <vector>
@@ -96,6 +97,10 @@ void sweep(const Supernodes& sn, Eigen::MatrixXd& x, Eigen::Index first_rhs, std
     backward<W>(sn, x, first_rhs, buffer);
 }
 
+// Sweeps running now in this process. A sweep splits its columns between two threads only
+// when it is the only one: Denoise already scores two filter runs alongside each other.
+std::atomic<int> sweeps_running{0};
+
 } // namespace
 
 void apply_supernodal_inverse(const cholmod_factor& factor, Eigen::MatrixXd& x, int times) {
@@ -122,7 +127,11 @@ void apply_supernodal_inverse(const cholmod_factor& factor, Eigen::MatrixXd& x, 
             }
     };
     const long entries = sn.value_start[sn.count];
-    if (x.cols() >= 2 && entries >= 100000 && std::thread::hardware_concurrency() >= 2) {
+    const bool alone = sweeps_running.fetch_add(1) == 0;
+    struct Leave {
+        ~Leave() { --sweeps_running; }
+    } leave;
+    if (alone && x.cols() >= 2 && entries >= 100000 && std::thread::hardware_concurrency() >= 2) {
         const Eigen::Index half = (x.cols() + 1) / 2;
         std::thread other(columns, half, x.cols());
         columns(0, half);
