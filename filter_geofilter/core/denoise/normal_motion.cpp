@@ -1,4 +1,5 @@
 #include "core/denoise/normal_motion.h"
+#include "core/mesh/components.h"
 #include "core/mesh/surface_measures.h"
 
 #include <cmath>
@@ -35,7 +36,7 @@ Points keep_normal_motion(const Points& input, const Points& smoothed, const Tri
     // so each round either sends a vertex back for good or ends: at most one round per vertex.
     // Only a face with a vertex sent back in the last round can have turned since: the first
     // round checks every face, the next ones only those (the faces of each vertex, once).
-    std::vector<int> face_start(static_cast<std::size_t>(input.rows()) + 1, 0), vertex_faces;
+    VertexFaces around;  // made once the first round finds a vertex to send back
     std::vector<Eigen::Index> to_check(static_cast<std::size_t>(triangles.rows()));
     for (Eigen::Index f = 0; f < triangles.rows(); ++f) to_check[static_cast<std::size_t>(f)] = f;
     std::vector<Eigen::Index> checked_in_round(static_cast<std::size_t>(triangles.rows()), -1);
@@ -52,23 +53,15 @@ Points keep_normal_motion(const Points& input, const Points& smoothed, const Tri
                 if (projected[static_cast<std::size_t>(triangles(f, k))]) back.push_back(triangles(f, k));
         }
         if (back.empty()) break;
-        if (vertex_faces.empty()) {  // the faces of each vertex, once the first round found some to send back
-            for (Eigen::Index f = 0; f < triangles.rows(); ++f)
-                for (int k = 0; k < 3; ++k) ++face_start[static_cast<std::size_t>(triangles(f, k)) + 1];
-            for (std::size_t v = 0; v + 1 < face_start.size(); ++v) face_start[v + 1] += face_start[v];
-            vertex_faces.resize(static_cast<std::size_t>(face_start.back()));
-            std::vector<int> fill(face_start.begin(), face_start.end() - 1);
-            for (Eigen::Index f = 0; f < triangles.rows(); ++f)
-                for (int k = 0; k < 3; ++k) vertex_faces[static_cast<std::size_t>(fill[static_cast<std::size_t>(triangles(f, k))]++)] = static_cast<int>(f);
-        }
+        if (around.start.empty()) around = vertex_faces(triangles, input.rows());
         to_check.clear();
         for (Eigen::Index v : back) {
             if (!projected[static_cast<std::size_t>(v)]) continue;
             projected[static_cast<std::size_t>(v)] = false;
             out.row(v) = smoothed.row(v);
             turned = true;
-            for (int j = face_start[static_cast<std::size_t>(v)]; j < face_start[static_cast<std::size_t>(v) + 1]; ++j) {
-                const int f = vertex_faces[static_cast<std::size_t>(j)];
+            for (int j = around.start[static_cast<std::size_t>(v)]; j < around.start[static_cast<std::size_t>(v) + 1]; ++j) {
+                const int f = around.face[static_cast<std::size_t>(j)];
                 if (checked_in_round[static_cast<std::size_t>(f)] == r.rounds) continue;
                 checked_in_round[static_cast<std::size_t>(f)] = r.rounds;
                 to_check.push_back(f);

@@ -64,6 +64,22 @@ int component_count(const std::vector<int>& labels) {
     return count;
 }
 
+VertexFaces vertex_faces(const Triangles& triangles, Eigen::Index n, const std::vector<bool>& skip_face) {
+    VertexFaces vf;
+    vf.start.assign(static_cast<size_t>(n) + 1, 0);
+    auto kept = [&](Eigen::Index f) { return skip_face.empty() || !skip_face[f]; };
+    for (Eigen::Index f = 0; f < triangles.rows(); ++f)
+        if (kept(f))
+            for (int k = 0; k < 3; ++k) ++vf.start[triangles(f, k) + 1];
+    for (size_t v = 0; v < static_cast<size_t>(n); ++v) vf.start[v + 1] += vf.start[v];
+    vf.face.resize(vf.start.back());
+    std::vector<int> cursor(vf.start.begin(), vf.start.end() - 1);
+    for (Eigen::Index f = 0; f < triangles.rows(); ++f)
+        if (kept(f))
+            for (int k = 0; k < 3; ++k) vf.face[cursor[triangles(f, k)]++] = static_cast<int>(f);
+    return vf;
+}
+
 VertexNeighbours vertex_neighbours(const Triangles& triangles, Eigen::Index vertex_count) {
     VertexNeighbours out;
     out.start.assign(static_cast<size_t>(vertex_count) + 1, 0);

@@ -22,6 +22,13 @@ struct VertexNeighbours {
 };
 VertexNeighbours vertex_neighbours(const Triangles& triangles, Eigen::Index vertex_count);
 
+// The faces around each vertex, in increasing face order, as compressed rows: the faces of
+// v are face[start[v] .. start[v+1]). Faces listed in skip_face (if non-empty) are left out.
+struct VertexFaces {
+    std::vector<int> start, face;
+};
+VertexFaces vertex_faces(const Triangles& triangles, Eigen::Index vertex_count, const std::vector<bool>& skip_face = {});
+
 // How many labels `labels` uses.
 int component_count(const std::vector<int>& labels);
 

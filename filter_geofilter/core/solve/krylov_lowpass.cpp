@@ -109,11 +109,11 @@ class LargeArray {
 public:
     explicit LargeArray(std::size_t bytes) {
         constexpr std::size_t page = std::size_t(2) << 20;
-        size_ = (std::max<std::size_t>(bytes, 1) + page - 1) / page * page;
-        data_ = std::aligned_alloc(page, size_);
+        const std::size_t size = (std::max<std::size_t>(bytes, 1) + page - 1) / page * page;
+        data_ = std::aligned_alloc(page, size);
         if (!data_) throw std::bad_alloc();
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
-        madvise(data_, size_, MADV_HUGEPAGE);  // a request: refused or unsupported, the pages stay small
+        madvise(data_, size, MADV_HUGEPAGE);  // a request: refused or unsupported, the pages stay small
 #endif
     }
     ~LargeArray() { std::free(data_); }
@@ -126,7 +126,6 @@ public:
 
 private:
     void* data_ = nullptr;
-    std::size_t size_ = 0;
 };
 
 // krylov_lowpass for `Cols` columns (Eigen::Dynamic: any number).
@@ -188,7 +187,7 @@ Eigen::MatrixXd lanczos_lowpass(const Laplacian& laplacian, const Eigen::MatrixX
     // bound by memory traffic. (Sharing the rows out among two threads was measured slower
     // at 384k vertices.)
     using RowMajor = Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Cols, Eigen::RowMajor>>;
-    const auto vector_at = [&](int k) { return vectors + static_cast<std::size_t>(k) * vector_doubles; };
+    const auto vector_at = [&](int which) { return vectors + static_cast<std::size_t>(which) * vector_doubles; };
     // out = M^-1 K x on rows of positive mass (0 elsewhere); `each_row(i, k_x)` sees row i of K x.
     const auto apply_a = [&](const auto& x, auto& out, const auto& each_row) {
         // A local row of fixed size for three columns: the sums stay in registers.
