@@ -74,8 +74,8 @@ Eigen::MatrixXd harmonic_extension(const Laplacian& laplacian, const std::vector
         if (!on_boundary[i] && !unknown[i]) h.row(static_cast<Eigen::Index>(i)).setZero();
     if (inner.mass.size() == 0) return h;
 
-    // Right-hand side -K_IB p_B.
-    Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(inner.mass.size(), 3);
+    // Right-hand side -K_IB p_B, one column per column of `points` (coordinates, or a field's).
+    Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(inner.mass.size(), points.cols());
     for (Eigen::Index col = 0; col < laplacian.stiffness.outerSize(); ++col) {
         if (!on_boundary[col]) continue;
         for (SparseMatrix::InnerIterator it(laplacian.stiffness, col); it; ++it)

@@ -15,7 +15,8 @@ std::vector<bool> boundary_vertices(const Triangles& triangles, Eigen::Index ver
 // The harmonic extension h of the boundary positions into the interior: K_II h_I = -K_IB p_B
 // (h = p on the boundary). p - h vanishes on the boundary, so it expands in the Dirichlet
 // eigenmodes of the interior, which is what a filter with a fixed boundary scales.
-// Components without boundary get h = 0 on their vertices.
+// Components without boundary get h = 0 on their vertices. `points` may have any number of
+// columns (a field's, filter_field), each extended on its own.
 Eigen::MatrixXd harmonic_extension(const Laplacian& laplacian, const std::vector<bool>& on_boundary,
                                    const Eigen::MatrixXd& points);
 
