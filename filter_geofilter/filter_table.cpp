@@ -203,6 +203,10 @@ FilterSpec denoise() {
     p.push_back(operator_parameter("the cotangent with a selection; without, the umbrella and the intrinsic Delaunay"
                                    " operators are both tried and the better-scoring one is kept."));
     append_where_and_how(p);
+    for (ParameterSpec& q : p)
+        if (q.name == param::fix_boundary)
+            q.help += " With one bump selected, always held: a lowpass at a bump's size would pull a free"
+                             " boundary inwards by about that size.";
     return {"GeoFilter: Denoise",
             "apply_geofilter_denoise",
             "denoise",

@@ -7,6 +7,7 @@
 #include "core/denoise/denoise.h"
 #include "core/denoise/normal_motion.h"
 #include "core/design/butterworth.h"
+#include "core/mesh/boundary.h"
 #include "shapes.h"
 #include "run_filter.h"
 
@@ -267,4 +268,49 @@ TEST(FilterField, ScalesASpheresCoordinateFunctionsByTheGainAtTwo) {
     EXPECT_GT(std::abs(expected - 1.0), 0.001);  // the gain is not trivially 1
     // A field of the wrong height is refused.
     EXPECT_THROW(filter_field(big.points, big.triangles, g, field.topRows(10)), Error);
+}
+
+TEST(BumpPattern, OnAnOpenPatchTheBoundaryIsHeldAndTheResultEndsCloserToTheTruth) {
+    // A gently waving open square with a pattern of Gaussian bumps and dents, one bump
+    // selected. The free boundary of a lowpass at the bump's size pulls the rim inwards, and
+    // with it the whole patch: farther from the bare patch than the bumpy input.
+    Mesh truth = grid(120, 1.0);
+    for (Eigen::Index i = 0; i < truth.points.rows(); ++i)
+        truth.points(i, 2) = 0.04 * std::sin(5 * truth.points(i, 0) + 1) * std::cos(4 * truth.points(i, 1));
+    const double rho = 0.04;
+    std::mt19937 random(11);
+    std::uniform_real_distribution<double> uniform(-0.45, 0.45);
+    std::vector<Eigen::RowVector2d> centres;
+    while (centres.size() < 24) {
+        const Eigen::RowVector2d c(uniform(random), uniform(random));
+        if (std::all_of(centres.begin(), centres.end(), [&](const auto& o) { return (o - c).norm() >= 1.6 * rho; }))
+            centres.push_back(c);
+    }
+    Points bumpy = truth.points;
+    for (Eigen::Index v = 0; v < bumpy.rows(); ++v)
+        for (size_t k = 0; k < centres.size(); ++k) {
+            const double d = (bumpy.row(v).head<2>() - centres[k]).norm();
+            bumpy(v, 2) += (k % 3 == 2 ? -1 : 1) * 0.24 * rho * std::exp(-d * d / (rho * rho));
+        }
+    std::vector<int> selected;
+    for (Eigen::Index f = 0; f < truth.triangles.rows(); ++f) {
+        bool inside = true;
+        for (int k = 0; k < 3; ++k) inside = inside && (bumpy.row(truth.triangles(f, k)).head<2>() - centres[0]).norm() < rho;
+        if (inside) selected.push_back(static_cast<int>(f));
+    }
+    const FilterSpec& spec = *find_filter("denoise");
+    const RunOutput out = run_filter(spec, default_values(spec, true), {bumpy, truth.triangles, selected, {}});
+    const auto rms_to_truth = [&](const Points& p) { return std::sqrt((p - truth.points).rowwise().squaredNorm().mean()); };
+    const double input = rms_to_truth(bumpy), denoised = rms_to_truth(out.points);
+    const double free_lowpass = rms_to_truth(apply_filter(bumpy, truth.triangles, out.transfer));
+    EXPECT_GT(free_lowpass, input) << "the case must be one the free boundary fails";
+    EXPECT_LT(denoised, 0.7 * input) << "free lowpass " << free_lowpass;
+    EXPECT_TRUE(logged(out, "open boundary held in place"));
+    // The outline stays: the rim moves only where a fitted bump reaches it, and then across
+    // the surface (a free lowpass pulls it in by a good part of the bump's radius).
+    const std::vector<bool> rim = boundary_vertices(truth.triangles, truth.points.rows());
+    double rim_drift = 0;
+    for (Eigen::Index v = 0; v < bumpy.rows(); ++v)
+        if (rim[static_cast<size_t>(v)]) rim_drift = std::max(rim_drift, (out.points.row(v) - bumpy.row(v)).head<2>().norm());
+    EXPECT_LT(rim_drift, 0.01 * rho);
 }
