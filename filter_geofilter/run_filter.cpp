@@ -533,9 +533,15 @@ RunOutput filter_surface(const FilterSpec& spec, const ParameterValues& given, c
         }
         out.points = apply_filter(input.points, input.triangles, out.transfer, options, &out.report, input.cache);
         if (spec.kind == FilterKind::Denoise && out.feature) {
+            const LowpassForBump lowpass_for = [&](double radius) {
+                FeatureEllipsoid bump = *out.feature;
+                bump.radius = radius;
+                const DenoiseDesign d = design_denoise_from_bump(bump, shape_of(spec, values), order_of(spec, values), out.op);
+                return apply_filter(input.points, input.triangles, d.g, options, nullptr, input.cache);
+            };
             const SelectedBumpDenoise bump = denoise_selected_bump(input.points, out.points, input.triangles,
                                                                    input.selected_faces, out.feature->radius,
-                                                                   out.transfer, options);
+                                                                   out.transfer, options, lowpass_for);
             const BumpPatternReport& pattern = bump.pattern;
             const std::string fit = "Gaussian profile of width " + format_number(pattern.width) + " (the selection's radius " +
                                     format_number(out.feature->radius) + "), selected bump " + format_number(pattern.selected_height) +
@@ -563,7 +569,11 @@ RunOutput filter_surface(const FilterSpec& spec, const ParameterValues& given, c
                                   "; volume removed " + format_number(pattern.removed_volume));
                 break;
             case SelectedBumpOutcome::FlatLowpass: {
-                const std::string why = "fell back to the flat lowpass because " + refused + "; " + detail +
+                const std::string cut = bump.flat_radius < out.feature->radius
+                                            ? " (cut for the fitted width " + format_number(bump.flat_radius) +
+                                                  ", narrower than the selection)"
+                                            : std::string();
+                const std::string why = "fell back to the flat lowpass" + cut + " because " + refused + "; " + detail +
                                         ": bumps of this size and smaller were smoothed away, their mean height kept (the enclosed"
                                         " volume moved by " + format_number(100 * bump.flat_volume_change) + " %)";
                 out.log.push_back("pattern of bumps: " + why);

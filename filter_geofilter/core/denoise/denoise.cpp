@@ -60,7 +60,8 @@ double detail_removed_at(const Points& input, const Points& lowpassed, const Tri
 
 SelectedBumpDenoise denoise_selected_bump(const Points& input, const Points& lowpassed, const Triangles& triangles,
                                           const std::vector<int>& bump_faces, double bump_radius,
-                                          const TransferFunction& g, const FilterOptions& options) {
+                                          const TransferFunction& g, const FilterOptions& options,
+                                          const LowpassForBump& lowpass_for) {
     // What the lowpass kept of the bumps is computed by the same lowpass, on fields of unit
     // height: 1e-5 of the diagonal is far below what decides the fit.
     FilterOptions field_options = options;
@@ -76,7 +77,17 @@ SelectedBumpDenoise denoise_selected_bump(const Points& input, const Points& low
         // moves a free boundary inwards. Faces turned by more than normal_motion_max_turn_degrees
         // still take the lowpass's positions: without that check the scans of the tuning half
         // of experiments/generalize_denoise folded 3-20x more faces.
-        const Points flat = keep_normal_motion(input, lowpassed, triangles);
+        // The fitted width measures the bump itself; the selection, the user's footprint, was
+        // up to twice as wide on the tuning half, and the lowpass cut for it took the base
+        // surface's large bumps too (a sphere: 1.8x the input's RMS distance to the truth; cut
+        // for the fitted width, 0.61x).
+        out.flat_radius = bump_radius;
+        Points narrower;
+        if (out.pattern.width > 0 && out.pattern.width < bump_radius && lowpass_for) {
+            narrower = lowpass_for(out.pattern.width);
+            out.flat_radius = out.pattern.width;
+        }
+        const Points flat = keep_normal_motion(input, narrower.rows() ? narrower : lowpassed, triangles);
         VolumeRestoreReport volume;
         restore_volume(input, flat, triangles, &volume);
         out.flat_volume_change = volume.largest_change;

@@ -78,7 +78,12 @@ struct SelectedBumpDenoise {
     // along the normals: the detail it removed there (a curved surface's even shrinking is no detail).
     double removed_detail = 0;
     double flat_volume_change = 0;  // the flat lowpass's largest relative change of a closed component's volume
+    double flat_radius = 0;         // the bump radius the flat lowpass was cut for (0: none was made)
 };
+
+// The Denoise lowpass designed for a bump of `radius` (design_denoise_from_bump with the
+// selection's shape, order and operator), applied to the input.
+using LowpassForBump = std::function<Points(double radius)>;
 
 // Denoise's rule for one selected bump (`bump_faces`, measured radius `bump_radius`):
 // `lowpassed` is the input lowpassed by `g` (design_denoise_from_bump, applied with
@@ -89,10 +94,13 @@ struct SelectedBumpDenoise {
 // removed detail at the selection higher than bump_min_height of its radius, the height
 // below which a selection is a flat patch; below that the input is returned unchanged, and
 // so it is when the flat lowpass changes a closed component's volume by more than
-// denoise_flat_max_volume_change.
+// denoise_flat_max_volume_change. The flat lowpass is cut for the smaller of the selection's
+// radius and the width of the profile fitted to the selected bump (made by `lowpass_for`
+// when that is smaller): a user's selection is a footprint, often wider than the bump.
 SelectedBumpDenoise denoise_selected_bump(const Points& input, const Points& lowpassed, const Triangles& triangles,
                                           const std::vector<int>& bump_faces, double bump_radius,
-                                          const TransferFunction& g, const FilterOptions& options);
+                                          const TransferFunction& g, const FilterOptions& options,
+                                          const LowpassForBump& lowpass_for);
 
 // Per-vertex sampling noise with nothing selected. How much to smooth depends on the noise
 // and on the mesh (its sampling, its sharp features), so no single cutoff serves every scan:
