@@ -206,7 +206,7 @@ FilterSpec denoise() {
     for (ParameterSpec& q : p)
         if (q.name == param::fix_boundary)
             q.help += " With one bump selected, always held: a lowpass at a bump's size would pull a free"
-                             " boundary inwards by about that size.";
+                      " boundary inwards by about that size.";
     return {"GeoFilter: Denoise",
             "apply_geofilter_denoise",
             "denoise",
