@@ -6,7 +6,6 @@
 #include "core/feature/icosphere.h"
 
 #include "core/denoise/denoise.h"
-#include "core/mesh/boundary.h"
 #include "core/mesh/mesh_prep.h"
 #include "core/mesh/surface_measures.h"
 
@@ -518,15 +517,8 @@ RunOutput filter_surface(const FilterSpec& spec, const ParameterValues& given, c
                               std::to_string(input.points.rows() - touched) + " vertices left exactly as they were");
         }
     } else if (region == 0) {
-        const bool bump_on_open_mesh = spec.kind == FilterKind::Denoise && out.feature && !cloud && !options.fix_boundary &&
-                                       [&] {
-                                           const std::vector<bool> rim = boundary_vertices(input.triangles, input.points.rows());
-                                           return std::find(rim.begin(), rim.end(), true) != rim.end();
-                                       }();
-        if (bump_on_open_mesh) {
-            // A lowpass at a bump's size pulls a free boundary inwards by about that size, and
-            // the pull reaches far inside: on the tuning half's open patches the free lowpass
-            // ended 0.95-3.3x the input's RMS distance to the truth, the held one 0.73-0.77x.
+        if (spec.kind == FilterKind::Denoise && out.feature && !cloud && !options.fix_boundary &&
+            denoise_bump_holds_boundary(input.triangles, input.points.rows())) {
             options.fix_boundary = true;
             out.log.push_back("open boundary held in place: a lowpass at the bump's size would pull a free boundary"
                               " inwards by about that size");

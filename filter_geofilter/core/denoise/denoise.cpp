@@ -1,4 +1,5 @@
 #include "core/denoise/denoise.h"
+#include "core/mesh/boundary.h"
 #include "core/mesh/components.h"
 #include "core/mesh/mesh_prep.h"
 #include "core/operators/operators.h"
@@ -19,6 +20,11 @@ DenoiseDesign design_denoise_from_bump(const FeatureEllipsoid& bump, FeatureShap
             "the selected bump: cutoff radius " + format_number(radius) + " = " + format_number(denoise_radius_factor) +
                 " x its radius " + format_number(bump.radius) +
                 (shape == FeatureShape::Sphere ? " (sphere-like, s = 2/R^2)" : " (cylinder-like, s = 1/R^2)")};
+}
+
+bool denoise_bump_holds_boundary(const Triangles& triangles, Eigen::Index vertex_count) {
+    const std::vector<bool> rim = boundary_vertices(triangles, vertex_count);
+    return std::find(rim.begin(), rim.end(), true) != rim.end();
 }
 
 double selected_area_share(const Points& points, const Triangles& triangles, const std::vector<int>& faces) {
