@@ -9,6 +9,7 @@
 #include "core/design/butterworth.h"
 #include "core/mesh/boundary.h"
 #include "shapes.h"
+#include "spectral.h"
 #include "run_filter.h"
 
 #include <gtest/gtest.h>
@@ -18,6 +19,7 @@
 #include <random>
 
 using namespace geofilter;
+using geofilter::reference::rms_distance;
 
 namespace {
 
@@ -300,9 +302,8 @@ TEST(BumpPattern, OnAnOpenPatchTheBoundaryIsHeldAndTheResultEndsCloserToTheTruth
     }
     const FilterSpec& spec = *find_filter("denoise");
     const RunOutput out = run_filter(spec, default_values(spec, true), {bumpy, truth.triangles, selected, {}});
-    const auto rms_to_truth = [&](const Points& p) { return std::sqrt((p - truth.points).rowwise().squaredNorm().mean()); };
-    const double input = rms_to_truth(bumpy), denoised = rms_to_truth(out.points);
-    const double free_lowpass = rms_to_truth(apply_filter(bumpy, truth.triangles, out.transfer));
+    const double input = rms_distance(bumpy, truth.points), denoised = rms_distance(out.points, truth.points);
+    const double free_lowpass = rms_distance(apply_filter(bumpy, truth.triangles, out.transfer), truth.points);
     EXPECT_GT(free_lowpass, input) << "the case must be one the free boundary fails";
     EXPECT_LT(denoised, 0.7 * input) << "free lowpass " << free_lowpass;
     EXPECT_TRUE(logged(out, "open boundary held in place"));
@@ -367,12 +368,12 @@ TEST(BumpPattern, AFlatLowpassForAWideSelectionIsCutForTheSelectedBumpsOwnWidth)
         const RunOutput out = run_filter(spec, values, {bumpy, truth.triangles, selected, {}});
         if (!logged(out, "fell back to the flat lowpass (cut for the fitted width")) continue;
         ++narrower;
-        const auto rms_to_truth = [&](const Points& p) { return std::sqrt((p - truth.points).rowwise().squaredNorm().mean()); };
         FilterOptions options = filter_options(spec, values);
         options.op = out.op;
         const double for_selection =
-            rms_to_truth(keep_normal_motion(bumpy, apply_filter(bumpy, truth.triangles, out.transfer, options), truth.triangles));
-        const double input = rms_to_truth(bumpy), denoised = rms_to_truth(out.points);
+            rms_distance(keep_normal_motion(bumpy, apply_filter(bumpy, truth.triangles, out.transfer, options), truth.triangles),
+                         truth.points);
+        const double input = rms_distance(bumpy, truth.points), denoised = rms_distance(out.points, truth.points);
         EXPECT_LT(denoised, input);
         EXPECT_LT(denoised, for_selection) << "input " << input;
     }
