@@ -137,15 +137,34 @@ NoiseVariance estimate_noise_variance(const Points& points, const Triangles& tri
         out.per_vertex[i] = middle_square[i] / expected->second / removed;
         sum += out.per_vertex[i];
     }
+    // A sharp feature (a corner, a toe's tip) bends its neighbours' residuals too; an impulse
+    // stands out alone (noise_variance.h).
+    const auto stands_out = [&](Eigen::Index i) {
+        return has_normal[static_cast<std::size_t>(i)] &&
+               residual[i] * residual[i] > denoise_impulse_sigmas * denoise_impulse_sigmas * out.per_vertex[i] * removed;
+    };
+    // Per vertex: its neighbour of the largest |residual|, and the largest |residual| of the others.
+    std::vector<int> loudest(static_cast<std::size_t>(points.rows()), -1);
+    Eigen::VectorXd others = Eigen::VectorXd::Zero(points.rows());
     for (Eigen::Index i = 0; i < points.rows(); ++i) {
-        if (!has_normal[static_cast<std::size_t>(i)] ||
-            !(residual[i] * residual[i] > denoise_impulse_sigmas * denoise_impulse_sigmas * out.per_vertex[i] * removed))
-            continue;
-        // A sharp feature (a corner, a toe's tip) bends its neighbours' residuals too; an
-        // impulse stands out alone.
-        double neighbours = 0;
-        for (int j = nb.start[i]; j < nb.start[i + 1]; ++j) neighbours = std::max(neighbours, std::abs(residual[nb.index[j]]));
-        if (std::abs(residual[i]) > denoise_impulse_alone * neighbours) out.impulses.push_back(static_cast<int>(i));
+        double largest = -1;
+        for (int j = nb.start[i]; j < nb.start[i + 1]; ++j) {
+            const double r = std::abs(residual[nb.index[j]]);
+            if (r > largest) {
+                others[i] = std::max(others[i], largest);
+                largest = r;
+                loudest[static_cast<std::size_t>(i)] = nb.index[j];
+            } else {
+                others[i] = std::max(others[i], r);
+            }
+        }
+    }
+    for (Eigen::Index i = 0; i < points.rows(); ++i) {
+        const int j = loudest[static_cast<std::size_t>(i)];
+        if (j < 0 || !stands_out(i) || !(std::abs(residual[i]) > denoise_impulse_alone * others[i])) continue;
+        const bool alone = std::abs(residual[i]) > denoise_impulse_alone * std::abs(residual[j]);
+        const bool one_of_a_pair = loudest[static_cast<std::size_t>(j)] == i;
+        if (alone || one_of_a_pair) out.impulses.push_back(static_cast<int>(i));
     }
     out.along_normals = sum / vertices;
     return out;
