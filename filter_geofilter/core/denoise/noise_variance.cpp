@@ -163,7 +163,8 @@ NoiseVariance estimate_noise_variance(const Points& points, const Triangles& tri
         const int j = loudest[static_cast<std::size_t>(i)];
         if (j < 0 || !stands_out(i) || !(std::abs(residual[i]) > denoise_impulse_alone * others[i])) continue;
         const bool alone = std::abs(residual[i]) > denoise_impulse_alone * std::abs(residual[j]);
-        const bool one_of_a_pair = loudest[static_cast<std::size_t>(j)] == i;
+        const bool one_of_a_pair = loudest[static_cast<std::size_t>(j)] == i && stands_out(j) &&
+                                   std::abs(residual[j]) > denoise_impulse_alone * others[j];
         if (alone || one_of_a_pair) out.impulses.push_back(static_cast<int>(i));
     }
     out.along_normals = sum / vertices;

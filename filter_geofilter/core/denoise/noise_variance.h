@@ -25,14 +25,14 @@
 // Impulses: a vertex whose residual is farther than denoise_impulse_sigmas standard deviations
 // of the residual its neighbourhood's noise leaves (Gaussian noise goes that far once in 5e8)
 // is no sample of that noise but an outlier (a spike of a scan), when it also stands
-// denoise_impulse_alone times farther out than any of its neighbours, or than all of them
-// but its loudest, whose own loudest neighbour it is: two outliers side by side hide each
-// other from the first test, and no round of putting impulses back ever reveals either. On
-// the tuning half of experiments/generalize_denoise's scans with outliers (1-2 % of the
-// vertices), the pairs left 0.39-0.85e-3 RMS to the truth instead of 0.66-1.10; a nearly clean
-// fandisk (noise 0.001 edge lengths) paid for it: 0.030 -> 0.047 edge lengths, some of its
-// crease vertices taken for pairs. Sharp features of more than two vertices (a corner, a
-// crease on a regular mesh, a raised tip and its ring) are still never taken.
+// denoise_impulse_alone times farther out than any of its neighbours; or when it and its
+// loudest neighbour are each other's loudest, both stand out, and each stands that much
+// farther out than all its other neighbours: two outliers side by side hide each other from
+// the first test, and no round of putting impulses back ever reveals either. On the tuning
+// half of experiments/generalize_denoise's scans with outliers (1-2 % of the vertices) the
+// pairs left 0.50-1.02e-3 RMS to the truth instead of 0.66-1.10; a nearly clean fandisk
+// (noise 0.001 edge lengths) lost a few crease vertices to them: 0.030 -> 0.033 edge lengths.
+// Looser pair rules took a diplodocus's tip or many of the fandisk's creases (docs/denoise.md).
 #pragma once
 
 #include "core/filter/filter.h"
