@@ -23,11 +23,12 @@ Sampling noise (nothing selected, the truth is the clean mesh):
   cad              sharp-edged parts (a box, a capped cylinder, fandisk); noise either way
 
 Denoise runs through meshlabserver 2020.09 and the plugin of this tree, as the smoothers do
-(with --denoise-only, through the Python module and without MeshLab: the tuning loop).
+(with --denoise-only, through the Python module and without MeshLab: the tuning loop; with
+--as-clouds, the sampling-noise cases' vertices alone, as point clouds, the same way).
 MeshLab's Taubin, HC Laplacian, Laplacian (cotangent) and TwoStep run at their defaults and at
 their best over a sweep scored against the truth (an oracle no user has).
 
-    experiments/run generalize_denoise [--half tuning|report] [--denoise-only] [--families a,b]
+    experiments/run generalize_denoise [--half tuning|report] [--denoise-only | --as-clouds] [--families a,b]
 
 Writes <out>/generalize.json; the report half of a full run writes docs/results/generalize.md.
 """
@@ -420,8 +421,12 @@ def measure(v, case, truth_normals, truth_volumes):
 # ---------------------------------------------------------------------------------------------
 # Runs
 
-def denoise_python(case):
+def denoise_python(case, cloud=False):
+    """Denoise through the Python module: on the mesh, or on its vertices alone as a point cloud."""
     import geofilter
+    if cloud:
+        out, report = geofilter.denoise(case["input"])
+        return out, report["log"]
     kwargs = {}
     if case["selection"] is not None:
         kwargs["selected_faces"] = case["selection"][2].astype(np.int32)
@@ -468,7 +473,7 @@ def judge(case, rows):
             "volume": vol_ok, "folds": dn["folded"] <= inp["folded"], "not worse than input": dn["rms"] <= inp["rms"]}
 
 
-def run_case(case, work, denoise_only):
+def run_case(case, work, denoise_only, cloud=False):
     f = case["f"]
     d = os.path.join(work, f"{case['family']}-{case['seed']}")
     os.makedirs(d, exist_ok=True)
@@ -482,7 +487,7 @@ def run_case(case, work, denoise_only):
     rows = {"input": m(noisy)}
     t = time.perf_counter()
     if denoise_only:
-        v, log = denoise_python(case)
+        v, log = denoise_python(case, cloud)
         rows["denoise"] = dict(m(v), log=[line for line in log if "pattern of bumps" in line or "cutoff sc" in line
                                          or "leaving the mesh" in line or "fell back" in line])
     else:
@@ -561,8 +566,14 @@ def main():
     ap.add_argument("--half", choices=list(HALF), default="report")
     ap.add_argument("--families", default=",".join(FEATURE + NOISE))
     ap.add_argument("--denoise-only", action="store_true", help="Denoise through the Python module only, no MeshLab")
+    ap.add_argument("--as-clouds", action="store_true",
+                    help="the sampling-noise cases' vertices as point clouds (no faces), Denoise only")
     ap.add_argument("--out", default=os.path.join(c.TOP, "results", "generalize"))
     args = ap.parse_args()
+    if args.as_clouds:
+        if any(fam not in NOISE for fam in args.families.split(",")):
+            ap.error("--as-clouds takes sampling-noise families only: " + ",".join(NOISE))
+        args.denoise_only = True
     os.makedirs(args.out, exist_ok=True)
     work = tempfile.mkdtemp(prefix="generalize-")
     t0 = time.perf_counter()
@@ -570,13 +581,15 @@ def main():
     for fam in args.families.split(","):
         for seed in HALF[args.half]:
             case = make_case(fam, seed)
-            r = run_case(case, work, args.denoise_only)
+            r = run_case(case, work, args.denoise_only, args.as_clouds)
             results.append(r)
             w = r["rows"]
             extra = "" if args.denoise_only else "  " + " ".join(f"{k} {ok}" for k, ok in r["floors"].items() if not ok)
             print(f"{r['name']}: input {fmt(w['input'])} -> Denoise {fmt(w['denoise'])}"
-                  f" ({w['denoise']['seconds']:.1f} s){extra}", flush=True)
-            with open(os.path.join(args.out, f"generalize-{args.half}.json"), "w") as out:
+                  f" ({w['denoise']['rms'] / w['input']['rms']:.3f} of the input's RMS; {w['denoise']['seconds']:.1f} s){extra}",
+                  flush=True)
+            name = f"generalize-{args.half}{'-clouds' if args.as_clouds else ''}.json"
+            with open(os.path.join(args.out, name), "w") as out:
                 json.dump(results, out, indent=1)
     total = time.perf_counter() - t0
     print(f"{len(results)} cases, {total:.0f} s")
