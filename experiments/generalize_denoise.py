@@ -370,9 +370,8 @@ def make_case(family, seed):
 # ---------------------------------------------------------------------------------------------
 # Measures
 
-def closed_volumes(v, f):
-    """Signed volume of each closed component (a component whose every edge has two faces)."""
-    n = len(v)
+def closed_components(f, n):
+    """Faces of each closed component (a component whose every edge has two faces, 20 faces or more)."""
     e = np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]])
     graph = sp.coo_matrix((np.ones(len(e)), (e[:, 0], e[:, 1])), shape=(n, n))
     _, label = connected_components(graph, directed=False)
@@ -380,24 +379,25 @@ def closed_volumes(v, f):
     for comp in np.unique(label[f[:, 0]]):
         ff = f[label[f[:, 0]] == comp]
         if len(ff) >= 20 and c.is_closed(ff):
-            out[int(comp)] = c.signed_volume(v, ff)
+            out[int(comp)] = ff
     return out
 
 
-def noise_volume_spread(case):
+def closed_volumes(v, components):
+    """Signed volume of each closed component (closed_components)."""
+    return {comp: c.signed_volume(v, ff) for comp, ff in components.items()}
+
+
+def noise_volume_spread(case, components):
     """Per closed component of the truth: one standard deviation, in % of its volume, of the volume
     change that noise like the case's makes (to first order, the sum over vertices of the volume's
     gradient dotted with the noise; its variance estimated from the noise drawn). A uniform offset of
     the surface is indistinguishable from this part of the noise."""
-    v, f = case["truth"], case["f"]
+    v = case["truth"]
     e = case["input"] - v
-    n = len(v)
-    edges = np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]])
-    _, label = connected_components(sp.coo_matrix((np.ones(len(edges)), (edges[:, 0], edges[:, 1])), shape=(n, n)),
-                                    directed=False)
     out = {}
-    for comp, volume in closed_volumes(v, f).items():
-        ff = f[label[f[:, 0]] == comp]
+    for comp, ff in components.items():
+        volume = c.signed_volume(v, ff)
         grad = np.zeros_like(v)
         a, b, d = ff[:, 0], ff[:, 1], ff[:, 2]
         np.add.at(grad, a, np.cross(v[b], v[d]) / 6)
@@ -407,12 +407,12 @@ def noise_volume_spread(case):
     return out
 
 
-def measure(v, case, truth_normals, truth_volumes):
+def measure(v, case, truth_normals, truth_volumes, components):
     f = case["f"]
     d = np.linalg.norm(v - case["truth"], axis=1)
     fn = c.face_normals(v, f)
     ang = np.degrees(np.arccos(np.clip(np.einsum("ij,ij->i", fn, truth_normals), -1, 1)))
-    vols = closed_volumes(v, f)
+    vols = closed_volumes(v, components)
     dvol = [100 * (vols[k] - t) / abs(t) for k, t in truth_volumes.items() if k in vols and t != 0]
     return {"rms": float(np.sqrt(np.mean(d ** 2))), "nerr": float(ang.mean()), "folded": int(np.sum(ang > 90)),
             "dvol": float(max(dvol, key=abs)) if dvol else None}
@@ -482,8 +482,9 @@ def run_case(case, work, denoise_only, cloud=False):
     case["truth"] = c.write_and_reload(os.path.join(d, "truth.ply"), case["truth"], f)
     case["input"] = noisy
     tn = c.face_normals(case["truth"], f)
-    tvol = closed_volumes(case["truth"], f)
-    m = lambda v: measure(v, case, tn, tvol)
+    closed = closed_components(f, len(case["truth"]))
+    tvol = closed_volumes(case["truth"], closed)
+    m = lambda v: measure(v, case, tn, tvol, closed)
     rows = {"input": m(noisy)}
     t = time.perf_counter()
     if denoise_only:
@@ -495,7 +496,7 @@ def run_case(case, work, denoise_only, cloud=False):
             rows[key] = dict(m(v), log=setting) if key == "denoise" else dict(m(v), setting=setting)
     rows["denoise"]["seconds"] = time.perf_counter() - t
     result = {"name": case["name"], "family": case["family"], "seed": case["seed"], "vertices": len(noisy), "rows": rows,
-              "volume_noise": noise_volume_spread(case)}
+              "volume_noise": noise_volume_spread(case, closed)}
     if not denoise_only:
         result["floors"] = judge(case, rows)
     return result
