@@ -1,6 +1,7 @@
 #include "core/solve/exact_pair.h"
 
 #include "core/solve/cascade.h"
+#include "core/solve/shifted_pair_cg.h"
 
 #include <algorithm>
 #include <chrono>
@@ -23,11 +24,7 @@ bool factor_needed_elsewhere(const TransferFunction& g, std::complex<double> r, 
 bool exact_pair_pays(const TransferFunction& g, std::complex<double> r, double shift, bool real_factor_held,
                      const PairSolveCosts& costs) {
     if (factor_needed_elsewhere(g, r, shift)) return false;
-    const PreconditionedRange range = pair_preconditioner_range(r, shift);
-    const double condition = range.high / range.low;
-    const double iterations = costs.last_pair_iterations > 0
-                                  ? costs.last_pair_iterations * std::sqrt(condition / costs.last_pair_condition)
-                                  : 6.5 * std::sqrt(condition);
+    const double iterations = shifted_pair_iterations(r, shift, costs.last_pair_iterations, costs.last_pair_rate);
     const double cg = (real_factor_held || costs.session ? 0.0 : costs.real_factorization) + iterations * costs.pair_iteration;
     return cg > (costs.session ? 2 : 1) * costs.complex_factorization;
 }

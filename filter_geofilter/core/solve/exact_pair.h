@@ -18,21 +18,21 @@
 namespace geofilter::detail {
 
 // What the two ways of solving a pair cost, in any one unit. The defaults are ratios to one
-// real factorisation of Kt + c I: one CG iteration on a pair 0.09-0.13 of it (0.14 taken);
-// the exact pair, a single-precision complex LDL^T refined in double (what the adapters and
-// geofilter-mpi factorise), 1.56-1.66 with its solves (1.6 taken), both measured on the
-// 384k-vertex diplodocus, the 1M torus and the 1.1M man (medians of three alternated runs of
-// tests/benchmark/benchmark_complex_pole.cpp, the lowpass). CG needs ~6.5 sqrt(high / low)
-// iterations at the default tolerance (11, 42 and 44 measured for the lowpass, notch and
-// exaggeration on a 416k scan: sqrt = 1.7, 6.5, 7.7). A solver that has timed its own steps
-// passes those instead.
+// real factorisation of Kt + c I: the exact pair, a single-precision complex LDL^T refined in
+// double (what the adapters and geofilter-mpi factorise), 1.56-1.66 with its solves (1.6
+// taken), measured on the 384k-vertex diplodocus, the 1M torus and the 1.1M man (medians of
+// three alternated runs of tests/benchmark/benchmark_complex_pole.cpp, the lowpass); one
+// iteration of the shifted CG (shifted_pair_cg.h), one solve with the real factor: half of the
+// 0.09-0.13 measured in the same runs for an iteration of CG on the real pair, which made two
+// (0.07 taken); their count from shifted_pair_iterations. A solver that has timed its own
+// steps passes those instead.
 struct PairSolveCosts {
     double real_factorization = 1.0;
     double complex_factorization = 1.6;
-    double pair_iteration = 0.14;
+    double pair_iteration = 0.07;
     // A previous CG pair solve on this mesh, to scale the iteration count from (0: none).
     int last_pair_iterations = 0;
-    double last_pair_condition = 0;
+    double last_pair_rate = 0;
     // The run keeps its factors for the next (a FilterCache: MeshLab's Preview). The next
     // parameter change moves r: a held real factor then preconditions CG at the new shift
     // with no factorisation (3-7 iterations measured at 100k-280k vertices), while a complex

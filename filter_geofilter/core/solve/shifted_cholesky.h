@@ -61,7 +61,7 @@ struct FactorState {
     double seconds_per_factorization = 0;   // the last numeric factorisation; 0 = none yet
     double seconds_per_pair_iteration = 0;  // the last conjugate-pair CG run; 0 = none yet
     int last_pair_iterations = 0;           // its iterations
-    double last_pair_condition = 0;         // and its preconditioned range's high / low
+    double last_pair_rate = 0;              // and its convergence rate (shifted_pair_rate)
     // The last run's CG pair solutions, in the order solved (kept only in a FilterCache): the
     // next run's pairs start from them (a preview's parameter change barely moves them).
     std::vector<Eigen::MatrixXd> pair_solutions;

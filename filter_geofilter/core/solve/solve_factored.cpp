@@ -7,6 +7,7 @@
 #include "core/solve/exact_pair.h"
 #include "core/solve/pcg.h"
 #include "core/solve/shifted_cholesky.h"
+#include "core/solve/shifted_pair_cg.h"
 #include "core/solve/solvers.h"
 
 #include <chrono>
@@ -68,13 +69,10 @@ public:
         return solved;
     }
 
-    // ((Kt - r)(Kt - conj r))^-1 y by CG preconditioned with P = (Kt + c)^2, c = |r| unless a
-    // factor at another shift is already held and reusing it is predicted to be cheaper than
-    // a new factorisation (a preview run with a changed frequency). With A the pair operator,
-    // low P <= A <= high P (pair_preconditioner_range), and A >= m I
-    // (m = pair_operator_lower_bound(r)), so the stopping test is a bound, not an estimate:
-    // |x - A^-1 y|^2 = r' A^-2 r <= r' P^-1 r / (low m). For c = |r|, low = sin^2(arg r / 2)
-    // and high = 1 on any mesh.
+    // ((Kt - r)(Kt - conj r))^-1 y from the Krylov space of (Kt + c)^-1 (shifted_pair_cg.h),
+    // c = |r| unless a factor at another shift is already held and reusing it is predicted to
+    // be cheaper than a new factorisation (a preview run with a changed frequency). The
+    // stopping test is a bound, not an estimate, at any c.
     Eigen::MatrixXd conjugate_pair(std::complex<double> r, const Eigen::MatrixXd& y, double allowed_error,
                                    double progress) override {
         const double shift = preconditioner_shift(r);
@@ -92,26 +90,27 @@ public:
             out -= twice_re * k_in;
             out += modulus2 * in;
         };
-        const BlockOperator preconditioner = [&](const Eigen::MatrixXd& in, Eigen::MatrixXd& out) {
-            out = state_.cholesky.solve_squared(in);
-        };
-        const PreconditionedRange range = pair_preconditioner_range(r, shift);
-        const double lower = range.low * pair_operator_lower_bound(r);
-        const ErrorBound bound = [&](const Eigen::MatrixXd&, const Eigen::ArrayXd& rz) {
-            return std::sqrt(std::max(rz.sum(), 0.0) / lower);
+        const BlockOperator solve_shifted = [&](const Eigen::MatrixXd& in, Eigen::MatrixXd& out) {
+            out = state_.cholesky.solve(in);
         };
         Eigen::MatrixXd x = starting_guess(quadratic, y);
+        Eigen::MatrixXd rest = y;
+        if (!x.isZero(0)) {
+            Eigen::MatrixXd a_x;
+            quadratic(x, a_x);
+            rest -= a_x;
+        }
         const FilterOptions& options = problem_.options;
         const PcgOutcome outcome =
-            block_pcg(quadratic, preconditioner, y, x, bound, allowed_error, options.max_iterations,
-                      [&](int, double) { return !options.progress || options.progress(progress, "solving"); });
+            solve_pair_by_shifted_cg(solve_shifted, shift, r, rest, x, allowed_error, options.max_iterations,
+                                     [&](int, double) { return !options.progress || options.progress(progress, "solving"); });
         record_pcg_outcome(outcome, allowed_error, "raise maxIterations or the tolerance", report_);
         const double seconds = seconds_since(t);
         report_.seconds_solve += seconds;
         if (outcome.iterations > 0) {
             state_.seconds_per_pair_iteration = seconds / outcome.iterations;
             state_.last_pair_iterations = outcome.iterations;
-            state_.last_pair_condition = range.high / range.low;
+            state_.last_pair_rate = shifted_pair_rate(r, shift);
         }
         if (problem_.factor_slot) {
             if (state_.pair_solutions.size() <= pairs_solved_) state_.pair_solutions.resize(pairs_solved_ + 1);
@@ -165,7 +164,7 @@ private:
                                    ? state_.seconds_per_pair_iteration
                                    : costs.pair_iteration * costs.real_factorization;
         costs.last_pair_iterations = state_.last_pair_iterations;
-        costs.last_pair_condition = state_.last_pair_condition;
+        costs.last_pair_rate = state_.last_pair_rate;
         costs.session = problem_.factor_slot != nullptr;
         return costs;
     }
@@ -205,9 +204,8 @@ private:
         return *slot;
     }
 
-    // |r| (the fewest iterations) unless the held factor is predicted to finish sooner: CG
-    // iterations scale with sqrt(high / low) of the preconditioned range, calibrated by the
-    // last pair solve on this state.
+    // |r| (the fewest iterations) unless the held factor is predicted to finish sooner
+    // (shifted_pair_iterations, calibrated by the last pair solve on this state).
     double preconditioner_shift(std::complex<double> r) const {
         const double ideal = std::abs(r);
         const ShiftedCholesky& cholesky = state_.cholesky;
@@ -215,10 +213,8 @@ private:
             state_.seconds_per_factorization <= 0 || state_.last_pair_iterations <= 0)
             return ideal;
         auto predicted_seconds = [&](double shift) {
-            const PreconditionedRange range = pair_preconditioner_range(r, shift);
-            const double iterations =
-                state_.last_pair_iterations * std::sqrt(range.high / range.low / state_.last_pair_condition);
-            return iterations * state_.seconds_per_pair_iteration;
+            return shifted_pair_iterations(r, shift, state_.last_pair_iterations, state_.last_pair_rate) *
+                   state_.seconds_per_pair_iteration;
         };
         const double held = predicted_seconds(cholesky.shift());
         const double fresh = state_.seconds_per_factorization + predicted_seconds(ideal);

@@ -1,0 +1,44 @@
+// A complex pole pair from one real Krylov space. ((Kt - r)(Kt - conj r))^-1 y = Im(z) / Im r
+// with z = (Kt - r)^-1 y. With a factor of P = Kt + c I held, Kt - r = P - sigma I for
+// sigma = r + c, so z = (I - sigma T)^-1 T y with T = P^-1: a shifted system in T. Its
+// Galerkin iterates come with CG on T u = T y at no extra solve, because a shifted system's
+// residual stays parallel to the seed's (B. Jegerlehner, "Krylov space solvers for shifted
+// linear systems", 1996). Each iteration is one solve with P on real columns, where CG on the
+// real pair preconditioned by P^2 needs two and two products with Kt. At c = |r| both converge
+// at the same rate per solve with P; with a factor held at another shift (a Preview's gain
+// change) this one converges faster per solve (shifted_pair_rate). Internal to the core.
+#pragma once
+
+#include "core/solve/pcg.h"
+
+#include <complex>
+
+namespace geofilter::detail {
+
+// The pair's solution ((Kt - r)(Kt - conj r))^-1 y, added to `x`, with its error (Frobenius)
+// at most `allowed_error`. `solve_shifted` applies (Kt + shift I)^-1 exactly (a factor), for
+// Kt symmetric with its spectrum in [0, inf) and shift > 0. The stopping test is a bound, not
+// an estimate: the shifted residual is zeta r_k (r_k the seed's residual), and I - sigma T is
+// normal with its spectrum on the segment {1 - sigma mu : 0 <= mu <= 1 / shift}, so
+// |z - z_k| <= |zeta r_k| / d with d that segment's distance to 0, and the pair's error is at
+// most that over |Im r|. Iterations, the last bound and convergence as block_pcg reports them.
+PcgOutcome solve_pair_by_shifted_cg(const BlockOperator& solve_shifted, double shift, std::complex<double> r,
+                                    const Eigen::MatrixXd& y, Eigen::MatrixXd& x, double allowed_error,
+                                    int max_iterations, const IterationObserver& observer = {});
+
+// The factor by which solve_pair_by_shifted_cg's error shrinks per iteration, asymptotically,
+// for the pair r and a factor at `shift`: a Krylov method on a spectrum filling the segment
+// from 1 to -r / shift converges by 1 / |w + sqrt(w^2 - 1)| (the larger root), w = 1 - 2 shift /
+// (r + shift) the image of 0 when the segment is mapped onto [-1, 1]. At shift = |r| its square
+// is CG's (sqrt(k) - 1) / (sqrt(k) + 1) on the real pair, k = 1 / sin^2(arg r / 2).
+double shifted_pair_rate(std::complex<double> r, double shift);
+
+// How many iterations solve_pair_by_shifted_cg is predicted to take for the pair r with a
+// factor at `shift`: an earlier solve's count scaled by the ratio of the rates' logarithms,
+// or, with none (last_iterations = 0), 13 (1 + q^2) / (1 - q^2) for the rate q. At shift = |r|
+// that is twice the 6.5 sqrt(k) iterations measured for CG on the real pair (11, 42 and 44
+// for the lowpass, notch and exaggeration on a 416k scan), whose iterations each made two
+// solves with the factor where these make one.
+double shifted_pair_iterations(std::complex<double> r, double shift, int last_iterations, double last_rate);
+
+} // namespace geofilter::detail
