@@ -6,6 +6,7 @@
 
 #include "core/solve/cascade.h"
 #include "core/solve/exact_pair.h"
+#include "core/solve/shifted_pair_cg.h"
 #include "core/solve/solvers.h"
 
 #include <petscksp.h>
@@ -310,11 +311,12 @@ public:
         return solved;
     }
 
-    // As the core's: CG on (Kt - r)(Kt - conj r) preconditioned with P = (Kt + |r|)^2, where
-    // low P <= A and A >= m I make |x - A^-1 y|^2 <= r'P^-1 r / (low m) a bound. With an
-    // inexact (multigrid) P that bound does not hold: the true residual's |r| / m does.
-    // Or exactly, by parallel MUMPS's complex LDL^T of Kt - r I, where the core's rule
-    // (exact_pair.h, at its default cost ratios: every rank must decide alike) says it pays.
+    // As the core's: with the factor of Kt + |r| I, from its Krylov space
+    // (shifted_pair_cg.h); or exactly, by parallel MUMPS's complex LDL^T of Kt - r I, where the
+    // core's rule (exact_pair.h, at its default cost ratios: every rank must decide alike) says
+    // it pays. The multigrid preconditioner is not (Kt + |r|)^-1 exactly, which that Krylov
+    // space needs: there, CG on (Kt - r)(Kt - conj r) preconditioned with P = V-cycle^2,
+    // stopped on the true residual's |r| / m, m = pair_operator_lower_bound(r).
     Eigen::MatrixXd conjugate_pair(std::complex<double> r, const Eigen::MatrixXd& y, double allowed_error,
                                    double) override {
         const double twice_re = 2 * r.real(), modulus2 = std::norm(r), shift = std::abs(r);
@@ -323,6 +325,7 @@ public:
             else if (exact_.holds(r) ||
                      detail::exact_pair_pays(header_.g, r, shift, shift_ == shift, detail::PairSolveCosts{}))
                 if (std::optional<Eigen::MatrixXd> x = exact_pair(r, y, allowed_error)) return *x;
+            return by_shifted_cg(shift, {{r, std::complex<double>(0, -1 / r.imag())}}, y, allowed_error);
         }
         factorize(shift);
         const auto t = std::chrono::steady_clock::now();
@@ -335,17 +338,39 @@ public:
         const BlockOperator preconditioner = [&](const Eigen::MatrixXd& in, Eigen::MatrixXd& out) {
             out = apply_factor(apply_factor(in));
         };
-        const detail::PreconditionedRange range = detail::pair_preconditioner_range(r, shift);
         const double m = detail::pair_operator_lower_bound(r);
-        const bool exact = header_.pole_solver == PoleSolver::Direct;
-        const Eigen::MatrixXd x = iterate(quadratic, preconditioner, y, allowed_error, !exact, [&](double residual_norm, double rz) {
-            return exact ? std::sqrt(std::max(rz, 0.0) / (range.low * m)) : residual_norm / m;
-        });
+        const Eigen::MatrixXd x =
+            iterate(quadratic, preconditioner, y, allowed_error, true, [&](double residual_norm, double) { return residual_norm / m; });
         report_.seconds_solve += seconds_since(t);
         return x;
     }
 
+    // The core's: a Butterworth's poles together, with the one factor (direct solver only).
+    std::optional<Eigen::MatrixXd> poles_at_one_shift(const PartialFractions& g, double shift, const Eigen::MatrixXd& y,
+                                                      double allowed_error) override {
+        if (header_.pole_solver != PoleSolver::Direct) return std::nullopt;
+        std::vector<detail::ShiftedTerm> terms;
+        for (size_t m = 0; m < g.poles.size(); ++m)
+            if (g.poles[m].imag() >= 0) terms.push_back({g.poles[m], g.poles[m].imag() > 0 ? 2.0 * g.residues[m] : g.residues[m]});
+        Eigen::MatrixXd x = by_shifted_cg(shift, terms, y, allowed_error);
+        report_.poles_at_one_shift += static_cast<int>(g.poles.size());
+        return x;
+    }
+
 private:
+    Eigen::MatrixXd by_shifted_cg(double shift, const std::vector<detail::ShiftedTerm>& terms, const Eigen::MatrixXd& y,
+                                  double allowed_error) {
+        factorize(shift);
+        const auto t = std::chrono::steady_clock::now();
+        Eigen::MatrixXd x = Eigen::MatrixXd::Zero(y.rows(), y.cols());
+        const PcgOutcome outcome = detail::sum_shifted_solves(
+            [&](const Eigen::MatrixXd& in, Eigen::MatrixXd& out) { out = apply_factor(in); }, shift, terms, y, x,
+            allowed_error, header_.max_iterations, {}, [this](Eigen::ArrayXd& sums) { sum_over_ranks(comm_, sums); });
+        detail::record_pcg_outcome(outcome, allowed_error, "raise maxIterations or the tolerance", report_);
+        report_.seconds_solve += seconds_since(t);
+        return x;
+    }
+
     // Empty (and a note for the log) when MUMPS fails or a rank lacks the memory: CG then
     // solves this pair and every later one. All of it collective, so every rank agrees.
     std::optional<Eigen::MatrixXd> exact_pair(std::complex<double> r, const Eigen::MatrixXd& y, double allowed_error) {

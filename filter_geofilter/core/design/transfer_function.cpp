@@ -47,6 +47,32 @@ double TransferFunction::operator()(double s) const {
     return value.real();
 }
 
+std::optional<PartialFractions> partial_fractions(const TransferFunction& g) {
+    const double at_infinity = g.at_infinity();
+    if (!std::isfinite(at_infinity)) return std::nullopt;
+    double largest = 0;
+    for (const auto& p : g.poles) largest = std::max(largest, std::abs(p));
+    PartialFractions out;
+    out.at_infinity = at_infinity;
+    for (size_t m = 0; m < g.poles.size(); ++m) {
+        const std::complex<double> p = g.poles[m];
+        std::complex<double> residue = g.gain;
+        for (const auto& factor : g.numerator) {
+            std::complex<double> value = 0;
+            for (auto c = factor.rbegin(); c != factor.rend(); ++c) value = value * p + *c;
+            residue *= value;
+        }
+        for (size_t j = 0; j < g.poles.size(); ++j) {
+            if (j == m) continue;
+            if (std::abs(p - g.poles[j]) <= 1e-9 * largest) return std::nullopt;
+            residue /= p - g.poles[j];
+        }
+        out.poles.push_back(p);
+        out.residues.push_back(residue);
+    }
+    return out;
+}
+
 double TransferFunction::at_infinity() const {
     if (second_order) {
         const auto& c = *second_order;

@@ -48,6 +48,15 @@ struct TransferFunction {
     std::string describe() const;  // coefficients / factors, for logs
 };
 
+// G(s) = at_infinity + sum_j residues[j] / (s - poles[j]): the form in which every pole is
+// solved on the same right-hand side. Empty when two poles coincide (relative to the largest)
+// or the numerator's degree exceeds the pole count.
+struct PartialFractions {
+    double at_infinity = 0;
+    std::vector<std::complex<double>> poles, residues;
+};
+std::optional<PartialFractions> partial_fractions(const TransferFunction& g);
+
 // Eq. 15. Refuses (Error naming the parameter) s1 <= 0, s2 <= 0, non-finite values,
 // G1 = 1, G1 = Ginf, and a denominator with a root on s >= 0 (docs/paper-notes.md §4).
 SecondOrderCoefficients design_coefficients(const SecondOrderSpec& spec);

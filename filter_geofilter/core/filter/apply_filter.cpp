@@ -34,6 +34,8 @@ std::string solver_used(const FilterReport& report) {
     if (report.exact_pairs > 0)
         used += "; " + std::to_string(report.exact_pairs) + " complex pole pair(s) solved exactly by " +
                 report.exact_pair_method + " with " + std::to_string(report.exact_pair_refinements) + " refinement(s)";
+    if (report.poles_at_one_shift > 0)
+        used += "; its " + std::to_string(report.poles_at_one_shift) + " poles solved together with one factor";
     if (!report.exact_pair_note.empty()) used += "; " + report.exact_pair_note;
     return used;
 }

@@ -102,6 +102,7 @@ struct FilterReport {
     std::string exact_pair_method;  // that factorisation, in words
     int exact_pair_refinements = 0; // solves with that factor beyond one per pair
     std::string exact_pair_note;    // why a pair predicted to pay was solved by CG after all
+    int poles_at_one_shift = 0;     // poles solved together from one factor's Krylov space (a Butterworth's)
 };
 
 // The solver that produced a report, in words for the log.

@@ -79,23 +79,6 @@ double pair_operator_lower_bound(std::complex<double> r) {
     return std::norm(std::complex<double>(nearest, 0) - r);
 }
 
-PreconditionedRange pair_preconditioner_range(std::complex<double> r, double shift) {
-    // f(s) = ((s - a)^2 + b^2) / (s + shift)^2 tends to 1 at infinity and has one critical
-    // point on s > -shift, where (s - a)(shift + a) = b^2; its extremes over s >= 0 are among
-    // f(0), that point and the limit.
-    const double a = r.real(), b2 = r.imag() * r.imag();
-    auto f = [&](double s) { return ((s - a) * (s - a) + b2) / ((s + shift) * (s + shift)); };
-    PreconditionedRange range{std::min(f(0), 1.0), std::max(f(0), 1.0)};
-    if (shift + a != 0) {
-        const double critical = a + b2 / (shift + a);
-        if (critical >= 0) {
-            range.low = std::min(range.low, f(critical));
-            range.high = std::max(range.high, f(critical));
-        }
-    }
-    return range;
-}
-
 Eigen::MatrixXd apply_cascade(const TransferFunction& g, const Eigen::MatrixXd& q, double allowed_error,
                               double spectrum_max, PoleGroupSolver& solver) {
     const std::vector<Stage> stages = stages_of(g);

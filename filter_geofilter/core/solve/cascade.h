@@ -8,6 +8,7 @@
 #include "core/design/transfer_function.h"
 
 #include <complex>
+#include <optional>
 #include <vector>
 
 namespace geofilter::detail {
@@ -22,6 +23,14 @@ public:
     // ((Kt - r)(Kt - conj r))^-1 y, with |error| (Frobenius) at most allowed_error.
     virtual Eigen::MatrixXd conjugate_pair(std::complex<double> r, const Eigen::MatrixXd& y, double allowed_error,
                                            double progress) = 0;
+    // sum_j residues[j] (Kt - poles[j])^-1 y (G(Kt) y - G(inf) y) for poles that all call for
+    // the factor at one shift (|r| of a pair, -r of a real pole: a Butterworth's), with
+    // |error| (Frobenius) at most allowed_error; empty when this solver has no way to solve
+    // them together (apply_factored_transfer then takes one pole group at a time).
+    virtual std::optional<Eigen::MatrixXd> poles_at_one_shift(const PartialFractions&, double /*shift*/,
+                                                              const Eigen::MatrixXd&, double /*allowed_error*/) {
+        return std::nullopt;
+    }
 };
 
 // G(Kt) q with |error| (Frobenius, in the units of q) at most allowed_error, for Kt
@@ -32,8 +41,9 @@ Eigen::MatrixXd apply_cascade(const TransferFunction& g, const Eigen::MatrixXd& 
                               double spectrum_max, PoleGroupSolver& solver);
 
 // G(Kt) q as the factored solver applies it: a second-order G with a complex pair as
-// Ginf + R/D (the iterative part then carries only the band G changes), anything else through
-// apply_cascade. The one recipe of the core's factored solver and of any other engine that
+// Ginf + R/D (the iterative part then carries only the band G changes); several pole groups
+// that call for the factor at one shift in partial fractions, together, where the solver can
+// (PoleGroupSolver::poles_at_one_shift); anything else through apply_cascade. The one recipe of the core's factored solver and of any other engine that
 // solves the same pole groups (geofilter-mpi's distributed one).
 Eigen::MatrixXd apply_factored_transfer(const TransferFunction& g, const Eigen::MatrixXd& q, double allowed_error,
                                         double spectrum_max, PoleGroupSolver& solver);
@@ -45,14 +55,5 @@ double spectrum_upper_bound(const SparseMatrix& symmetric);
 // The smallest value of |s - r|^2 over s >= 0: the smallest eigenvalue of (Kt - r)(Kt - conj r)
 // can be no smaller, whatever the mesh.
 double pair_operator_lower_bound(std::complex<double> r);
-
-// Bounds low P <= A <= high P for the pair operator A = (Kt - r)(Kt - conj r) and the
-// preconditioner P = (Kt + shift)^2, whatever the mesh: the range of |s - r|^2 / (s + shift)^2
-// over s >= 0. CG on A preconditioned by P needs about sqrt(high / low) times a constant
-// iterations. shift = |r| is the best real shift; then low = sin^2(arg r / 2), high = 1.
-struct PreconditionedRange {
-    double low, high;
-};
-PreconditionedRange pair_preconditioner_range(std::complex<double> r, double shift);
 
 } // namespace geofilter::detail

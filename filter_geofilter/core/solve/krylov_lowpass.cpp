@@ -7,6 +7,7 @@
 #include <complex>
 #include <cstdlib>
 #include <new>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,29 +21,19 @@ namespace {
 
 using Complex = std::complex<double>;
 
-// q(s) = (1 - G(s)) / s = sum_m w_m / (s - p_m): G(s) = G(inf) + sum_m rho_m / (s - p_m) with
-// rho_m = gain N(p_m) / prod_{j != m} (p_m - p_j), and G(0) = 1 cancels q's 1/s term, so
-// w_m = -rho_m / p_m.
-struct PartialFractions {
+// q(s) = (1 - G(s)) / s = sum_m w_m / (s - p_m): G(s) = G(inf) + sum_m rho_m / (s - p_m)
+// (partial_fractions), and G(0) = 1 cancels q's 1/s term, so w_m = -rho_m / p_m.
+struct HighpassQuotient {
     std::vector<Complex> poles, weights;
 };
 
 // G qualifies (krylov_lowpass_applies).
-PartialFractions partial_fractions_of_highpass_quotient(const TransferFunction& g) {
-    PartialFractions out;
-    for (std::size_t m = 0; m < g.poles.size(); ++m) {
-        const Complex p = g.poles[m];
-        Complex residue = g.gain;
-        for (const auto& factor : g.numerator) {
-            Complex value = 0;
-            for (auto c = factor.rbegin(); c != factor.rend(); ++c) value = value * p + *c;
-            residue *= value;
-        }
-        for (std::size_t j = 0; j < g.poles.size(); ++j)
-            if (j != m) residue /= p - g.poles[j];
-        out.poles.push_back(p);
-        out.weights.push_back(-residue / p);
-    }
+HighpassQuotient highpass_quotient(const TransferFunction& g) {
+    const std::optional<PartialFractions> fractions = partial_fractions(g);
+    if (!fractions) throw Error("a Krylov lowpass needs simple poles and G finite at infinity");
+    HighpassQuotient out;
+    out.poles = fractions->poles;
+    for (std::size_t m = 0; m < out.poles.size(); ++m) out.weights.push_back(-fractions->residues[m] / out.poles[m]);
     return out;
 }
 
@@ -59,7 +50,7 @@ struct TridiagonalQuotient {
 };
 
 TridiagonalQuotient highpass_quotient_of_tridiagonal(const std::vector<double>& alpha, const std::vector<double>& beta,
-                                                     const PartialFractions& q) {
+                                                     const HighpassQuotient& q) {
     const std::size_t k = alpha.size();
     TridiagonalQuotient out;
     out.coefficients = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(k));
@@ -89,12 +80,9 @@ TridiagonalQuotient highpass_quotient_of_tridiagonal(const std::vector<double>& 
 } // namespace
 
 bool krylov_lowpass_applies(const TransferFunction& g) {
-    if (g.poles.empty() || std::abs(g(0) - 1) > 1e-12 || !std::isfinite(g.at_infinity())) return false;
-    for (std::size_t i = 0; i < g.poles.size(); ++i) {
-        if (g.poles[i].imag() == 0 && g.poles[i].real() >= 0) return false;
-        for (std::size_t j = 0; j < i; ++j)
-            if (std::abs(g.poles[i] - g.poles[j]) <= 1e-9 * std::abs(g.poles[i])) return false;
-    }
+    if (g.poles.empty() || std::abs(g(0) - 1) > 1e-12 || !partial_fractions(g)) return false;
+    for (const Complex& p : g.poles)
+        if (p.imag() == 0 && p.real() >= 0) return false;
     return true;
 }
 
@@ -130,7 +118,7 @@ private:
 
 // krylov_lowpass for `Cols` columns (Eigen::Dynamic: any number).
 template <int Cols>
-Eigen::MatrixXd lanczos_lowpass(const Laplacian& laplacian, const Eigen::MatrixXd& values, const PartialFractions& q,
+Eigen::MatrixXd lanczos_lowpass(const Laplacian& laplacian, const Eigen::MatrixXd& values, const HighpassQuotient& q,
                                 double allowed_error, int max_steps, KrylovReport* report) {
     SparseMatrix compressed;
     if (!laplacian.stiffness.isCompressed()) (compressed = laplacian.stiffness).makeCompressed();
@@ -338,7 +326,7 @@ Eigen::MatrixXd krylov_lowpass(const Laplacian& laplacian, const Eigen::MatrixXd
     if (!(allowed_error > 0)) throw Error("a Krylov lowpass needs a positive allowed error (got " + format_number(allowed_error) + ")");
     if (!krylov_lowpass_applies(g))
         throw Error("a Krylov lowpass needs G(0) = 1, G finite at infinity, and simple poles off s >= 0 (at least one)");
-    const PartialFractions q = partial_fractions_of_highpass_quotient(g);
+    const HighpassQuotient q = highpass_quotient(g);
     if (values.cols() == 3) return lanczos_lowpass<3>(laplacian, values, q, allowed_error, max_steps, report);
     return lanczos_lowpass<Eigen::Dynamic>(laplacian, values, q, allowed_error, max_steps, report);
 }

@@ -31,34 +31,68 @@ double shifted_pair_iterations(std::complex<double> r, double shift, int last_it
 
 PcgOutcome solve_pair_by_shifted_cg(const BlockOperator& solve_shifted, double shift, std::complex<double> r,
                                     const Eigen::MatrixXd& y, Eigen::MatrixXd& x, double allowed_error,
-                                    int max_iterations, const IterationObserver& observer) {
-    const Eigen::Index rows = y.rows(), columns = y.cols();
-    const Complex sigma = r + shift;
-    // The shifted system is (T + s) w = T y with z = -w / sigma; the directions below carry
-    // that factor already, so that their sum is z itself.
-    const Complex s = -1.0 / sigma, scale = -1.0 / sigma;
-    const double bound_per_residual = 1 / (segment_distance_to_zero(sigma, shift) * std::abs(r.imag()));
+                                    int max_iterations, const IterationObserver& observer,
+                                    const ColumnSumReduction& reduce_over_parts) {
+    return sum_shifted_solves(solve_shifted, shift, {{r, Complex(0, -1 / r.imag())}}, y, x, allowed_error,
+                              max_iterations, observer, reduce_over_parts);
+}
 
+PcgOutcome sum_shifted_solves(const BlockOperator& solve_shifted, double shift, const std::vector<ShiftedTerm>& terms,
+                              const Eigen::MatrixXd& y, Eigen::MatrixXd& x, double allowed_error, int max_iterations,
+                              const IterationObserver& observer, const ColumnSumReduction& reduce_over_parts) {
+    const Eigen::Index rows = y.rows(), columns = y.cols();
+    const auto column_sums = [&](Eigen::ArrayXd sums) {
+        if (reduce_over_parts) reduce_over_parts(sums);
+        return sums;
+    };
     Eigen::MatrixXd residual, q;
     solve_shifted(y, residual);  // the seed's residual T y - T u at u = 0
-    Eigen::MatrixXd p = residual;
-    Eigen::MatrixXd direction_re = scale.real() * residual, direction_im = scale.imag() * residual;
-    Eigen::MatrixXd z_im = Eigen::MatrixXd::Zero(rows, columns);
+    Eigen::MatrixXd sum = Eigen::MatrixXd::Zero(rows, columns);
 
-    Eigen::ArrayXd rr = residual.colwise().squaredNorm().transpose().array();
+    // Each pole's shifted system is (T + s) w = T y with z = -w / sigma; its directions carry
+    // that factor already, so that their sum is z itself.
+    struct Shifted {
+        Complex s, scale, weight;
+        double bound_per_residual;
+        Eigen::ArrayXcd zeta, zeta_previous, zeta_next;
+        Eigen::MatrixXd direction_re, direction_im;
+    };
+    std::vector<Shifted> shifted;
+    for (const ShiftedTerm& term : terms) {
+        const Complex sigma = term.pole + shift;
+        if (std::abs(sigma) <= 1e-14 * shift) {  // the real pole -shift: T y, exact
+            sum += term.weight.real() * residual;
+            continue;
+        }
+        Shifted t;
+        t.s = -1.0 / sigma;
+        t.scale = -1.0 / sigma;
+        t.weight = term.weight;
+        t.bound_per_residual = std::abs(term.weight) / segment_distance_to_zero(sigma, shift);
+        t.zeta = t.zeta_previous = Eigen::ArrayXcd::Ones(columns);
+        t.zeta_next = Eigen::ArrayXcd::Zero(columns);
+        t.direction_re = t.scale.real() * residual;
+        t.direction_im = t.scale.imag() * residual;
+        shifted.push_back(std::move(t));
+    }
+    Eigen::MatrixXd p = residual;
+    Eigen::ArrayXd rr = column_sums(residual.colwise().squaredNorm().transpose().array());
     const Eigen::ArrayXd rr_start = rr;
-    Eigen::ArrayXcd zeta = Eigen::ArrayXcd::Ones(columns), zeta_previous = zeta;
     Eigen::ArrayXd alpha_previous = Eigen::ArrayXd::Ones(columns), beta_previous = Eigen::ArrayXd::Zero(columns);
-    Eigen::ArrayXcd zeta_next(columns);
 
     PcgOutcome outcome;
     const auto measure = [&] {
         double squared = 0, relative = 0;
         for (Eigen::Index c = 0; c < columns; ++c) {
-            squared += std::norm(zeta[c]) * rr[c];
-            if (rr_start[c] > 0) relative = std::max(relative, std::abs(zeta[c]) * std::sqrt(rr[c] / rr_start[c]));
+            double column = 0, largest_zeta = 0;
+            for (const Shifted& t : shifted) {
+                column += t.bound_per_residual * std::abs(t.zeta[c]);
+                largest_zeta = std::max(largest_zeta, std::abs(t.zeta[c]));
+            }
+            squared += column * column * rr[c];
+            if (rr_start[c] > 0) relative = std::max(relative, largest_zeta * std::sqrt(rr[c] / rr_start[c]));
         }
-        outcome.error_bound = std::sqrt(squared) * bound_per_residual;
+        outcome.error_bound = std::sqrt(squared);
         outcome.relative_residual = relative;
         outcome.converged = outcome.error_bound <= allowed_error;
     };
@@ -66,45 +100,46 @@ PcgOutcome solve_pair_by_shifted_cg(const BlockOperator& solve_shifted, double s
     for (int it = 1; !outcome.converged && it <= max_iterations; ++it) {
         if (!std::isfinite(outcome.error_bound)) return outcome;
         solve_shifted(p, q);
-        const Eigen::ArrayXd pq = p.cwiseProduct(q).colwise().sum().transpose().array();
+        const Eigen::ArrayXd pq = column_sums(p.cwiseProduct(q).colwise().sum().transpose().array());
         Eigen::ArrayXd alpha = Eigen::ArrayXd::Zero(columns);
         for (Eigen::Index c = 0; c < columns; ++c) {
             // A column whose seed has converged exactly has nothing left to add.
-            if (rr[c] == 0 || !(pq[c] > 0)) {
-                zeta_next[c] = 0;
-                continue;
-            }
+            if (rr[c] == 0 || !(pq[c] > 0)) continue;
             alpha[c] = rr[c] / pq[c];
-            // zeta_k = 1 / R_k(-s), R_k the seed's residual polynomial, by its three-term recurrence.
-            zeta_next[c] = zeta[c] * zeta_previous[c] * alpha_previous[c] /
-                           (alpha[c] * beta_previous[c] * (zeta_previous[c] - zeta[c]) +
-                            zeta_previous[c] * alpha_previous[c] * (1.0 + s * alpha[c]));
-            const Complex step = alpha[c] * zeta_next[c] / zeta[c];
-            z_im.col(c) += step.real() * direction_im.col(c) + step.imag() * direction_re.col(c);
+            for (Shifted& t : shifted) {
+                // zeta_k = 1 / R_k(-s), R_k the seed's residual polynomial, by its three-term recurrence.
+                const Complex zeta = t.zeta[c], zeta_previous = t.zeta_previous[c];
+                t.zeta_next[c] = zeta * zeta_previous * alpha_previous[c] /
+                                 (alpha[c] * beta_previous[c] * (zeta_previous - zeta) +
+                                  zeta_previous * alpha_previous[c] * (1.0 + t.s * alpha[c]));
+                const Complex step = t.weight * alpha[c] * t.zeta_next[c] / zeta;
+                sum.col(c) += step.real() * t.direction_re.col(c) - step.imag() * t.direction_im.col(c);
+            }
             residual.col(c) -= alpha[c] * q.col(c);
         }
-        const Eigen::ArrayXd rr_next = residual.colwise().squaredNorm().transpose().array();
+        const Eigen::ArrayXd rr_next = column_sums(residual.colwise().squaredNorm().transpose().array());
         for (Eigen::Index c = 0; c < columns; ++c) {
             if (alpha[c] == 0) {
                 rr[c] = 0;
-                zeta[c] = 0;
                 continue;
             }
             const double beta = rr_next[c] / rr[c];
-            const Complex ratio = zeta_next[c] / zeta[c];
-            const Complex beta_shifted = ratio * ratio * beta;
-            const Complex lead = zeta_next[c] * scale;
-            double* re = direction_re.col(c).data();
-            double* im = direction_im.col(c).data();
             const double* res = residual.col(c).data();
-            for (Eigen::Index i = 0; i < rows; ++i) {
-                const double old_re = re[i];
-                re[i] = lead.real() * res[i] + beta_shifted.real() * old_re - beta_shifted.imag() * im[i];
-                im[i] = lead.imag() * res[i] + beta_shifted.real() * im[i] + beta_shifted.imag() * old_re;
+            for (Shifted& t : shifted) {
+                const Complex ratio = t.zeta_next[c] / t.zeta[c];
+                const Complex beta_shifted = ratio * ratio * beta;
+                const Complex lead = t.zeta_next[c] * t.scale;
+                double* re = t.direction_re.col(c).data();
+                double* im = t.direction_im.col(c).data();
+                for (Eigen::Index i = 0; i < rows; ++i) {
+                    const double old_re = re[i];
+                    re[i] = lead.real() * res[i] + beta_shifted.real() * old_re - beta_shifted.imag() * im[i];
+                    im[i] = lead.imag() * res[i] + beta_shifted.real() * im[i] + beta_shifted.imag() * old_re;
+                }
+                t.zeta_previous[c] = t.zeta[c];
+                t.zeta[c] = t.zeta_next[c];
             }
             p.col(c) = residual.col(c) + beta * p.col(c);
-            zeta_previous[c] = zeta[c];
-            zeta[c] = zeta_next[c];
             alpha_previous[c] = alpha[c];
             beta_previous[c] = beta;
             rr[c] = rr_next[c];
@@ -116,7 +151,7 @@ PcgOutcome solve_pair_by_shifted_cg(const BlockOperator& solve_shifted, double s
             return outcome;
         }
     }
-    if (outcome.converged) x += z_im / r.imag();
+    if (outcome.converged) x += sum;
     return outcome;
 }
 

@@ -1,30 +1,48 @@
-// A complex pole pair from one real Krylov space. ((Kt - r)(Kt - conj r))^-1 y = Im(z) / Im r
-// with z = (Kt - r)^-1 y. With a factor of P = Kt + c I held, Kt - r = P - sigma I for
-// sigma = r + c, so z = (I - sigma T)^-1 T y with T = P^-1: a shifted system in T. Its
-// Galerkin iterates come with CG on T u = T y at no extra solve, because a shifted system's
-// residual stays parallel to the seed's (B. Jegerlehner, "Krylov space solvers for shifted
-// linear systems", 1996). Each iteration is one solve with P on real columns, where CG on the
-// real pair preconditioned by P^2 needs two and two products with Kt. At c = |r| both converge
-// at the same rate per solve with P; with a factor held at another shift (a Preview's gain
-// change) this one converges faster per solve (shifted_pair_rate). Internal to the core.
+// Complex poles from one real Krylov space. With a factor of P = Kt + c I held,
+// Kt - r = P - sigma I for sigma = r + c, so z = (Kt - r)^-1 y = (I - sigma T)^-1 T y with
+// T = P^-1: a shifted system in T. Its Galerkin iterates come with CG on T u = T y at no extra
+// solve, because a shifted system's residual stays parallel to the seed's (B. Jegerlehner,
+// "Krylov space solvers for shifted linear systems", 1996), and so do those of every other
+// pole solved with the same P. A pair is ((Kt - r)(Kt - conj r))^-1 y = Im(z) / Im r; each
+// iteration is one solve with P on real columns, where CG on the real pair preconditioned by
+// P^2 needs two and two products with Kt. At c = |r| both converge at the same rate per solve
+// with P; with a factor held at another shift (a Preview's gain change) this one converges
+// faster per solve (shifted_pair_rate). A Butterworth's poles all have |r| = c: its pairs,
+// in partial fractions, share one space. Internal to the core.
 #pragma once
 
 #include "core/solve/pcg.h"
 
 #include <complex>
+#include <vector>
 
 namespace geofilter::detail {
 
-// The pair's solution ((Kt - r)(Kt - conj r))^-1 y, added to `x`, with its error (Frobenius)
-// at most `allowed_error`. `solve_shifted` applies (Kt + shift I)^-1 exactly (a factor), for
-// Kt symmetric with its spectrum in [0, inf) and shift > 0. The stopping test is a bound, not
-// an estimate: the shifted residual is zeta r_k (r_k the seed's residual), and I - sigma T is
-// normal with its spectrum on the segment {1 - sigma mu : 0 <= mu <= 1 / shift}, so
-// |z - z_k| <= |zeta r_k| / d with d that segment's distance to 0, and the pair's error is at
-// most that over |Im r|. Iterations, the last bound and convergence as block_pcg reports them.
+// One term of a sum formed by sum_shifted_solves: Re(weight (Kt - pole)^-1 y).
+struct ShiftedTerm {
+    std::complex<double> pole, weight;
+};
+
+// The sum of the terms' Re(weight (Kt - pole)^-1 y), added to `x`, with its error (Frobenius)
+// at most `allowed_error`: every pole from the one Krylov space of T = (Kt + shift I)^-1, one
+// solve with it per iteration whatever the number of poles. `solve_shifted` applies
+// (Kt + shift I)^-1 exactly (a factor), for Kt symmetric with its spectrum in [0, inf) and
+// shift > 0; a pole must not be real and >= 0. The stopping test is a bound, not an estimate:
+// a term's shifted residual is zeta r_k (r_k the seed's residual), and I - sigma T is normal
+// with its spectrum on the segment {1 - sigma mu : 0 <= mu <= 1 / shift}, so the term's error is
+// at most |weight| |zeta r_k| / d, d that segment's distance to 0. A real pole at -shift is
+// T y itself, exact. Iterations, the last bound and convergence as block_pcg reports them.
+// A caller holding only its share of the rows passes `reduce_over_parts` (as to block_pcg).
+PcgOutcome sum_shifted_solves(const BlockOperator& solve_shifted, double shift, const std::vector<ShiftedTerm>& terms,
+                              const Eigen::MatrixXd& y, Eigen::MatrixXd& x, double allowed_error, int max_iterations,
+                              const IterationObserver& observer = {}, const ColumnSumReduction& reduce_over_parts = {});
+
+// The pair's solution ((Kt - r)(Kt - conj r))^-1 y = Re((-i / Im r) (Kt - r)^-1 y), added to
+// `x`, by sum_shifted_solves.
 PcgOutcome solve_pair_by_shifted_cg(const BlockOperator& solve_shifted, double shift, std::complex<double> r,
                                     const Eigen::MatrixXd& y, Eigen::MatrixXd& x, double allowed_error,
-                                    int max_iterations, const IterationObserver& observer = {});
+                                    int max_iterations, const IterationObserver& observer = {},
+                                    const ColumnSumReduction& reduce_over_parts = {});
 
 // The factor by which solve_pair_by_shifted_cg's error shrinks per iteration, asymptotically,
 // for the pair r and a factor at `shift`: a Krylov method on a spectrum filling the segment

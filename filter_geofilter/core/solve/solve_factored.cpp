@@ -120,7 +120,47 @@ public:
         return x;
     }
 
+    // Every pole from the one Krylov space of (Kt + c)^-1 (sum_shifted_solves), c the poles'
+    // shift unless a held factor is predicted to finish sooner, as for a pair.
+    std::optional<Eigen::MatrixXd> poles_at_one_shift(const PartialFractions& g, double ideal,
+                                                      const Eigen::MatrixXd& y, double allowed_error) override {
+        std::vector<ShiftedTerm> terms;
+        for (size_t m = 0; m < g.poles.size(); ++m) {
+            const std::complex<double> pole = g.poles[m], residue = g.residues[m];
+            if (pole.imag() < 0) continue;  // with its conjugate: 2 Re(residue (Kt - pole)^-1 y)
+            terms.push_back({pole, pole.imag() > 0 ? 2.0 * residue : residue});
+        }
+        const double shift = shift_for(terms, ideal);
+        factorize(shift, 0.1);
+        const auto t = std::chrono::steady_clock::now();
+        const BlockOperator solve_shifted = [&](const Eigen::MatrixXd& in, Eigen::MatrixXd& out) {
+            out = state_.cholesky.solve(in);
+        };
+        Eigen::MatrixXd x = Eigen::MatrixXd::Zero(y.rows(), y.cols());
+        const FilterOptions& options = problem_.options;
+        const PcgOutcome outcome =
+            sum_shifted_solves(solve_shifted, shift, terms, y, x, allowed_error, options.max_iterations,
+                               [&](int, double) { return !options.progress || options.progress(0.5, "solving"); });
+        record_pcg_outcome(outcome, allowed_error, "raise maxIterations or the tolerance", report_);
+        report_.poles_at_one_shift += static_cast<int>(g.poles.size());
+        const double seconds = seconds_since(t);
+        report_.seconds_solve += seconds;
+        if (outcome.iterations > 0) {
+            state_.seconds_per_pair_iteration = seconds / outcome.iterations;
+            state_.last_pair_iterations = outcome.iterations;
+            state_.last_pair_rate = slowest_rate(terms, shift);
+        }
+        return x;
+    }
+
 private:
+    static double slowest_rate(const std::vector<ShiftedTerm>& terms, double shift) {
+        double rate = 0;
+        for (const ShiftedTerm& term : terms)
+            if (term.pole.imag() != 0) rate = std::max(rate, shifted_pair_rate(term.pole, shift));
+        return rate;
+    }
+
     // Where CG on A x = y starts: zero, or, when an earlier run on this state solved a pair in
     // the same place of its cascade, that solution x_prev scaled by the Galerkin step
     // alpha = <x_prev, y> / <x_prev, A x_prev>, which minimises the A-norm error along x_prev:
@@ -204,17 +244,24 @@ private:
         return *slot;
     }
 
-    // |r| (the fewest iterations) unless the held factor is predicted to finish sooner
-    // (shifted_pair_iterations, calibrated by the last pair solve on this state).
-    double preconditioner_shift(std::complex<double> r) const {
-        const double ideal = std::abs(r);
+    // |r| (the fewest iterations) unless the held factor is predicted to finish sooner.
+    double preconditioner_shift(std::complex<double> r) const { return shift_for({{r, 1.0}}, std::abs(r)); }
+
+    // The shift to solve `terms` at: `ideal` unless a factor is held at another one and is
+    // predicted to finish sooner than a new factorisation and the iterations at `ideal`
+    // (shifted_pair_iterations for the slowest pair, calibrated by the last solve on this state).
+    double shift_for(const std::vector<ShiftedTerm>& terms, double ideal) const {
         const ShiftedCholesky& cholesky = state_.cholesky;
         if (!cholesky.has_factor() || cholesky.shift() == ideal || state_.seconds_per_pair_iteration <= 0 ||
             state_.seconds_per_factorization <= 0 || state_.last_pair_iterations <= 0)
             return ideal;
         auto predicted_seconds = [&](double shift) {
-            return shifted_pair_iterations(r, shift, state_.last_pair_iterations, state_.last_pair_rate) *
-                   state_.seconds_per_pair_iteration;
+            double iterations = 0;
+            for (const ShiftedTerm& term : terms)
+                if (term.pole.imag() != 0)
+                    iterations = std::max(iterations, shifted_pair_iterations(term.pole, shift, state_.last_pair_iterations,
+                                                                              state_.last_pair_rate));
+            return iterations * state_.seconds_per_pair_iteration;
         };
         const double held = predicted_seconds(cholesky.shift());
         const double fresh = state_.seconds_per_factorization + predicted_seconds(ideal);
@@ -246,6 +293,23 @@ private:
 
 } // namespace
 
+namespace {
+
+// The shift at which every pole of g calls for the factor (|r| for a pair, -r for a real
+// pole), if they agree.
+std::optional<double> one_shift_for_every_pole(const TransferFunction& g) {
+    std::optional<double> shift;
+    for (const std::complex<double>& p : g.poles) {
+        const double own = p.imag() == 0 ? -p.real() : std::abs(p);
+        if (!(own > 0)) return std::nullopt;
+        if (!shift) shift = own;
+        else if (std::abs(own - *shift) > 1e-9 * *shift) return std::nullopt;
+    }
+    return shift;
+}
+
+} // namespace
+
 Eigen::MatrixXd solve_factored(const FilterProblem& problem, FilterReport& report) {
     const TransferFunction& g = problem.g;
     FactoredStages stages(problem, report);
@@ -266,6 +330,11 @@ Eigen::MatrixXd apply_factored_transfer(const TransferFunction& g, const Eigen::
         const Eigen::MatrixXd x = solver.conjugate_pair(g.poles[0], rhs, allowed_error * std::abs(c.a2), 0.5);
         return g_inf * q + x / c.a2;
     }
+    if (g.poles.size() > 2 || (g.poles.size() == 2 && g.poles[0].imag() == 0))
+        if (const std::optional<double> shift = one_shift_for_every_pole(g))
+            if (const std::optional<PartialFractions> fractions = partial_fractions(g))
+                if (std::optional<Eigen::MatrixXd> x = solver.poles_at_one_shift(*fractions, *shift, q, allowed_error))
+                    return fractions->at_infinity * q + *x;
     return apply_cascade(g, q, allowed_error, spectrum_max, solver);
 }
 
