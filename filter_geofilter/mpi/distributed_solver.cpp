@@ -325,7 +325,7 @@ public:
             else if (exact_.holds(r) ||
                      detail::exact_pair_pays(header_.g, r, shift, shift_ == shift, detail::PairSolveCosts{}))
                 if (std::optional<Eigen::MatrixXd> x = exact_pair(r, y, allowed_error)) return *x;
-            return by_shifted_cg(shift, {{r, std::complex<double>(0, -1 / r.imag())}}, y, allowed_error);
+            return by_shifted_cg(shift, {detail::pair_term(r)}, y, allowed_error);
         }
         factorize(shift);
         const auto t = std::chrono::steady_clock::now();
@@ -349,10 +349,7 @@ public:
     std::optional<Eigen::MatrixXd> poles_at_one_shift(const PartialFractions& g, double shift, const Eigen::MatrixXd& y,
                                                       double allowed_error) override {
         if (header_.pole_solver != PoleSolver::Direct) return std::nullopt;
-        std::vector<detail::ShiftedTerm> terms;
-        for (size_t m = 0; m < g.poles.size(); ++m)
-            if (g.poles[m].imag() >= 0) terms.push_back({g.poles[m], g.poles[m].imag() > 0 ? 2.0 * g.residues[m] : g.residues[m]});
-        Eigen::MatrixXd x = by_shifted_cg(shift, terms, y, allowed_error);
+        Eigen::MatrixXd x = by_shifted_cg(shift, detail::shifted_terms(g), y, allowed_error);
         report_.poles_at_one_shift += static_cast<int>(g.poles.size());
         return x;
     }

@@ -73,7 +73,7 @@ TEST(ShiftedPairCg, MatchesTheDenseSpectralSolveAtAnyHeldShift) {
             };
             const double allowed = 1e-9 * expected.norm();
             Eigen::MatrixXd x = Eigen::MatrixXd::Zero(y.rows(), y.cols());
-            const PcgOutcome outcome = detail::solve_pair_by_shifted_cg(solve, shift, r, y, x, allowed, 1000);
+            const PcgOutcome outcome = detail::sum_shifted_solves(solve, shift, {detail::pair_term(r)}, y, x, allowed, 1000);
             ASSERT_TRUE(outcome.converged);
             const double error = (x - expected).norm();
             EXPECT_LE(error, allowed);
@@ -109,9 +109,9 @@ TEST(ShiftedPairCg, AHeldFactorAtAnotherShiftNeedsFewerSolvesThanCgOnTheRealPair
     const double allowed = 1e-9 * expected.norm();
 
     Eigen::MatrixXd shifted = Eigen::MatrixXd::Zero(y.rows(), 3);
-    const PcgOutcome by_shift = detail::solve_pair_by_shifted_cg(
-        [&](const Eigen::MatrixXd& in, Eigen::MatrixXd& out) { out = cholesky.solve(in); }, shift, r, y, shifted,
-        allowed, 1000);
+    const PcgOutcome by_shift = detail::sum_shifted_solves(
+        [&](const Eigen::MatrixXd& in, Eigen::MatrixXd& out) { out = cholesky.solve(in); }, shift, {detail::pair_term(r)},
+        y, shifted, allowed, 1000);
     ASSERT_TRUE(by_shift.converged);
     EXPECT_LE((shifted - expected).norm(), allowed);
 
@@ -126,7 +126,7 @@ TEST(ShiftedPairCg, AHeldFactorAtAnotherShiftNeedsFewerSolvesThanCgOnTheRealPair
             const Eigen::MatrixXd k_in = s.kt * in;
             out = s.kt * k_in - 2 * r.real() * k_in + std::norm(r) * in;
         },
-        [&](const Eigen::MatrixXd& in, Eigen::MatrixXd& out) { out = cholesky.solve_squared(in); }, y, real,
+        [&](const Eigen::MatrixXd& in, Eigen::MatrixXd& out) { out = cholesky.solve(cholesky.solve(in)); }, y, real,
         [&](const Eigen::MatrixXd&, const Eigen::ArrayXd& rz) { return std::sqrt(std::max(rz.sum(), 0.0) / lower); },
         allowed, 1000);
     ASSERT_TRUE(by_pair.converged);

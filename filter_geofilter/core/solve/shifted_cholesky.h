@@ -34,9 +34,8 @@ public:
     void factorize(double shift);
     bool has_factor() const { return !std::isnan(shift_); }
     double shift() const { return shift_; }
-    // (Kt + shift I)^-1 b and (Kt + shift I)^-2 b with the current factor.
-    Eigen::MatrixXd solve(const Eigen::MatrixXd& b) const { return solve_supernodal(llt_.factor(), b, 1); }
-    Eigen::MatrixXd solve_squared(const Eigen::MatrixXd& b) const { return solve_supernodal(llt_.factor(), b, 2); }
+    // (Kt + shift I)^-1 b with the current factor.
+    Eigen::MatrixXd solve(const Eigen::MatrixXd& b) const { return solve_supernodal(llt_.factor(), b); }
 
 private:
     const SparseMatrix& kt_;

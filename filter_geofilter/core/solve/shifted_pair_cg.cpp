@@ -29,12 +29,16 @@ double shifted_pair_iterations(std::complex<double> r, double shift, int last_it
     return 13 * (1 + rate * rate) / (1 - rate * rate);
 }
 
-PcgOutcome solve_pair_by_shifted_cg(const BlockOperator& solve_shifted, double shift, std::complex<double> r,
-                                    const Eigen::MatrixXd& y, Eigen::MatrixXd& x, double allowed_error,
-                                    int max_iterations, const IterationObserver& observer,
-                                    const ColumnSumReduction& reduce_over_parts) {
-    return sum_shifted_solves(solve_shifted, shift, {{r, Complex(0, -1 / r.imag())}}, y, x, allowed_error,
-                              max_iterations, observer, reduce_over_parts);
+ShiftedTerm pair_term(std::complex<double> r) { return {r, Complex(0, -1 / r.imag())}; }
+
+std::vector<ShiftedTerm> shifted_terms(const PartialFractions& g) {
+    std::vector<ShiftedTerm> terms;
+    for (size_t m = 0; m < g.poles.size(); ++m) {
+        const Complex pole = g.poles[m], residue = g.residues[m];
+        if (pole.imag() < 0) continue;  // with its conjugate
+        terms.push_back({pole, pole.imag() > 0 ? 2.0 * residue : residue});
+    }
+    return terms;
 }
 
 PcgOutcome sum_shifted_solves(const BlockOperator& solve_shifted, double shift, const std::vector<ShiftedTerm>& terms,

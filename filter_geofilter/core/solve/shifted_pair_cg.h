@@ -11,6 +11,7 @@
 // in partial fractions, share one space. Internal to the core.
 #pragma once
 
+#include "core/design/transfer_function.h"
 #include "core/solve/pcg.h"
 
 #include <complex>
@@ -37,21 +38,21 @@ PcgOutcome sum_shifted_solves(const BlockOperator& solve_shifted, double shift, 
                               const Eigen::MatrixXd& y, Eigen::MatrixXd& x, double allowed_error, int max_iterations,
                               const IterationObserver& observer = {}, const ColumnSumReduction& reduce_over_parts = {});
 
-// The pair's solution ((Kt - r)(Kt - conj r))^-1 y = Re((-i / Im r) (Kt - r)^-1 y), added to
-// `x`, by sum_shifted_solves.
-PcgOutcome solve_pair_by_shifted_cg(const BlockOperator& solve_shifted, double shift, std::complex<double> r,
-                                    const Eigen::MatrixXd& y, Eigen::MatrixXd& x, double allowed_error,
-                                    int max_iterations, const IterationObserver& observer = {},
-                                    const ColumnSumReduction& reduce_over_parts = {});
+// The pair r, conj r as a term: ((Kt - r)(Kt - conj r))^-1 y = Re((-i / Im r) (Kt - r)^-1 y).
+ShiftedTerm pair_term(std::complex<double> r);
 
-// The factor by which solve_pair_by_shifted_cg's error shrinks per iteration, asymptotically,
-// for the pair r and a factor at `shift`: a Krylov method on a spectrum filling the segment
+// sum_j residues[j] (Kt - poles[j])^-1 y as terms, a conjugate pair as one:
+// 2 Re(residue (Kt - pole)^-1 y).
+std::vector<ShiftedTerm> shifted_terms(const PartialFractions& g);
+
+// The factor by which sum_shifted_solves' error on the pair r shrinks per iteration,
+// asymptotically, with a factor at `shift`: a Krylov method on a spectrum filling the segment
 // from 1 to -r / shift converges by 1 / |w + sqrt(w^2 - 1)| (the larger root), w = 1 - 2 shift /
 // (r + shift) the image of 0 when the segment is mapped onto [-1, 1]. At shift = |r| its square
 // is CG's (sqrt(k) - 1) / (sqrt(k) + 1) on the real pair, k = 1 / sin^2(arg r / 2).
 double shifted_pair_rate(std::complex<double> r, double shift);
 
-// How many iterations solve_pair_by_shifted_cg is predicted to take for the pair r with a
+// How many iterations sum_shifted_solves is predicted to take for the pair r with a
 // factor at `shift`: an earlier solve's count scaled by the ratio of the rates' logarithms,
 // or, with none (last_iterations = 0), 13 (1 + q^2) / (1 - q^2) for the rate q. At shift = |r|
 // that is twice the 6.5 sqrt(k) iterations measured for CG on the real pair (11, 42 and 44

@@ -90,9 +90,6 @@ public:
             out -= twice_re * k_in;
             out += modulus2 * in;
         };
-        const BlockOperator solve_shifted = [&](const Eigen::MatrixXd& in, Eigen::MatrixXd& out) {
-            out = state_.cholesky.solve(in);
-        };
         Eigen::MatrixXd x = starting_guess(quadratic, y);
         Eigen::MatrixXd rest = y;
         if (!x.isZero(0)) {
@@ -100,18 +97,8 @@ public:
             quadratic(x, a_x);
             rest -= a_x;
         }
-        const FilterOptions& options = problem_.options;
-        const PcgOutcome outcome =
-            solve_pair_by_shifted_cg(solve_shifted, shift, r, rest, x, allowed_error, options.max_iterations,
-                                     [&](int, double) { return !options.progress || options.progress(progress, "solving"); });
-        record_pcg_outcome(outcome, allowed_error, "raise maxIterations or the tolerance", report_);
-        const double seconds = seconds_since(t);
-        report_.seconds_solve += seconds;
-        if (outcome.iterations > 0) {
-            state_.seconds_per_pair_iteration = seconds / outcome.iterations;
-            state_.last_pair_iterations = outcome.iterations;
-            state_.last_pair_rate = shifted_pair_rate(r, shift);
-        }
+        report_.seconds_solve += seconds_since(t);
+        solve_by_shifted_cg({pair_term(r)}, shift, rest, x, allowed_error, progress);
         if (problem_.factor_slot) {
             if (state_.pair_solutions.size() <= pairs_solved_) state_.pair_solutions.resize(pairs_solved_ + 1);
             state_.pair_solutions[pairs_solved_] = x;
@@ -120,29 +107,32 @@ public:
         return x;
     }
 
-    // Every pole from the one Krylov space of (Kt + c)^-1 (sum_shifted_solves), c the poles'
-    // shift unless a held factor is predicted to finish sooner, as for a pair.
+    // Every pole from the one Krylov space of (Kt + c)^-1, c the poles' shift unless a held
+    // factor is predicted to finish sooner, as for a pair.
     std::optional<Eigen::MatrixXd> poles_at_one_shift(const PartialFractions& g, double ideal,
                                                       const Eigen::MatrixXd& y, double allowed_error) override {
-        std::vector<ShiftedTerm> terms;
-        for (size_t m = 0; m < g.poles.size(); ++m) {
-            const std::complex<double> pole = g.poles[m], residue = g.residues[m];
-            if (pole.imag() < 0) continue;  // with its conjugate: 2 Re(residue (Kt - pole)^-1 y)
-            terms.push_back({pole, pole.imag() > 0 ? 2.0 * residue : residue});
-        }
-        const double shift = shift_for(terms, ideal);
-        factorize(shift, 0.1);
+        const std::vector<ShiftedTerm> terms = shifted_terms(g);
+        Eigen::MatrixXd x = Eigen::MatrixXd::Zero(y.rows(), y.cols());
+        solve_by_shifted_cg(terms, shift_for(terms, ideal), y, x, allowed_error, 0.1);
+        report_.poles_at_one_shift += static_cast<int>(g.poles.size());
+        return x;
+    }
+
+private:
+    // sum_shifted_solves with the factor at `shift` (made here if it is not held), added to x;
+    // its time per iteration and count are kept for the next choice of shift.
+    void solve_by_shifted_cg(const std::vector<ShiftedTerm>& terms, double shift, const Eigen::MatrixXd& y,
+                             Eigen::MatrixXd& x, double allowed_error, double progress) {
+        factorize(shift, progress);
         const auto t = std::chrono::steady_clock::now();
         const BlockOperator solve_shifted = [&](const Eigen::MatrixXd& in, Eigen::MatrixXd& out) {
             out = state_.cholesky.solve(in);
         };
-        Eigen::MatrixXd x = Eigen::MatrixXd::Zero(y.rows(), y.cols());
         const FilterOptions& options = problem_.options;
         const PcgOutcome outcome =
             sum_shifted_solves(solve_shifted, shift, terms, y, x, allowed_error, options.max_iterations,
-                               [&](int, double) { return !options.progress || options.progress(0.5, "solving"); });
+                               [&](int, double) { return !options.progress || options.progress(progress, "solving"); });
         record_pcg_outcome(outcome, allowed_error, "raise maxIterations or the tolerance", report_);
-        report_.poles_at_one_shift += static_cast<int>(g.poles.size());
         const double seconds = seconds_since(t);
         report_.seconds_solve += seconds;
         if (outcome.iterations > 0) {
@@ -150,10 +140,8 @@ public:
             state_.last_pair_iterations = outcome.iterations;
             state_.last_pair_rate = slowest_rate(terms, shift);
         }
-        return x;
     }
 
-private:
     static double slowest_rate(const std::vector<ShiftedTerm>& terms, double shift) {
         double rate = 0;
         for (const ShiftedTerm& term : terms)
@@ -245,7 +233,7 @@ private:
     }
 
     // |r| (the fewest iterations) unless the held factor is predicted to finish sooner.
-    double preconditioner_shift(std::complex<double> r) const { return shift_for({{r, 1.0}}, std::abs(r)); }
+    double preconditioner_shift(std::complex<double> r) const { return shift_for({pair_term(r)}, std::abs(r)); }
 
     // The shift to solve `terms` at: `ideal` unless a factor is held at another one and is
     // predicted to finish sooner than a new factorisation and the iterations at `ideal`

@@ -103,7 +103,7 @@ std::atomic<int> sweeps_running{0};
 
 } // namespace
 
-void apply_supernodal_inverse(const cholmod_factor& factor, Eigen::MatrixXd& x, int times) {
+void apply_supernodal_inverse(const cholmod_factor& factor, Eigen::MatrixXd& x) {
     const Supernodes sn = supernodes_of(factor);
     if (x.rows() != Eigen::Index(factor.n)) throw std::logic_error("apply_supernodal_inverse: wrong number of rows");
     int tallest = 0;
@@ -116,15 +116,14 @@ void apply_supernodal_inverse(const cholmod_factor& factor, Eigen::MatrixXd& x, 
     // takes about as long as starting a thread.
     const auto columns = [&](Eigen::Index first, Eigen::Index last) {
         std::vector<double> buffer(std::size_t(tallest) * 4);
-        for (int k = 0; k < times; ++k)
-            for (Eigen::Index c = first; c < last;) {
-                switch (std::min<Eigen::Index>(last - c, 4)) {
-                case 4: sweep<4>(sn, x, c, buffer); c += 4; break;
-                case 3: sweep<3>(sn, x, c, buffer); c += 3; break;
-                case 2: sweep<2>(sn, x, c, buffer); c += 2; break;
-                default: sweep<1>(sn, x, c, buffer); c += 1; break;
-                }
+        for (Eigen::Index c = first; c < last;) {
+            switch (std::min<Eigen::Index>(last - c, 4)) {
+            case 4: sweep<4>(sn, x, c, buffer); c += 4; break;
+            case 3: sweep<3>(sn, x, c, buffer); c += 3; break;
+            case 2: sweep<2>(sn, x, c, buffer); c += 2; break;
+            default: sweep<1>(sn, x, c, buffer); c += 1; break;
             }
+        }
     };
     const long entries = sn.value_start[sn.count];
     const bool alone = sweeps_running.fetch_add(1) == 0;
@@ -141,13 +140,13 @@ void apply_supernodal_inverse(const cholmod_factor& factor, Eigen::MatrixXd& x, 
     }
 }
 
-Eigen::MatrixXd solve_supernodal(const cholmod_factor& factor, const Eigen::MatrixXd& b, int times) {
+Eigen::MatrixXd solve_supernodal(const cholmod_factor& factor, const Eigen::MatrixXd& b) {
     const Eigen::Index n = b.rows();
     if (n != Eigen::Index(factor.n)) throw std::logic_error("solve_supernodal: wrong number of rows");
     const int* perm = static_cast<const int*>(factor.Perm);
     Eigen::MatrixXd x(n, b.cols());
     for (Eigen::Index k = 0; k < n; ++k) x.row(k) = b.row(perm ? perm[k] : k);
-    apply_supernodal_inverse(factor, x, times);
+    apply_supernodal_inverse(factor, x);
     Eigen::MatrixXd out(n, b.cols());
     for (Eigen::Index k = 0; k < n; ++k) out.row(perm ? perm[k] : k) = x.row(k);
     return out;

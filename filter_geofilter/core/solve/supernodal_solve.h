@@ -15,12 +15,12 @@
 
 namespace geofilter::detail {
 
-// x <- (L L^T)^-1 x, `times` times over, x in the factor's order (rows permuted by P).
+// x <- (L L^T)^-1 x, x in the factor's order (rows permuted by P).
 // `factor` is CHOLMOD's supernodal LL^T with int indices, numerically factorised.
-void apply_supernodal_inverse(const cholmod_factor& factor, Eigen::MatrixXd& x, int times);
+void apply_supernodal_inverse(const cholmod_factor& factor, Eigen::MatrixXd& x);
 
-// A^-times b for b in the matrix's own order: P applied once before, P^T once after.
-Eigen::MatrixXd solve_supernodal(const cholmod_factor& factor, const Eigen::MatrixXd& b, int times = 1);
+// A^-1 b for b in the matrix's own order: P applied once before, P^T once after.
+Eigen::MatrixXd solve_supernodal(const cholmod_factor& factor, const Eigen::MatrixXd& b);
 
 // Eigen's wrapper, which analyses and factorises, with the factor it holds readable.
 struct SupernodalCholesky : Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> {
