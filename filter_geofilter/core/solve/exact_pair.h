@@ -34,12 +34,12 @@ struct PairSolveCosts {
     int last_pair_iterations = 0;
     double last_pair_rate = 0;
     // The run keeps its factors for the next (a FilterCache: MeshLab's Preview). The next
-    // parameter change moves r: a held real factor then preconditions CG at the new shift
-    // with no factorisation (3-7 iterations measured at 100k-280k vertices), while a complex
+    // parameter change moves r: a held real factor then serves the shifted CG at the new r
+    // with no factorisation (5-17 iterations measured at 17k-280k vertices), while a complex
     // factor serves only the same r and is made again. So a session charges the real factor
     // as held and the complex one twice (this run and the next change): sharp pairs (notch,
     // exaggeration) still go exact, the lowpass stays on CG (its Preview change at 100k took
-    // 0.96 s exact against 0.32-0.48 s on CG).
+    // 0.96 s exact against 0.32-0.48 s on CG on the real pair, 0.20-0.29 s now).
     bool session = false;
 };
 
