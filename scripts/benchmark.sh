@@ -7,7 +7,8 @@
 # only the preview rows, in about a minute, --solve-profile only the triangular-solve profile at
 # 1M vertices, in two minutes; neither writes anything; --denoise only Denoise on 160k-1M
 # vertices against Denoise scoring on the whole mesh and Taubin, in ~13 minutes, into
-# results/benchmark/denoise.md).
+# results/benchmark/denoise.md; --floor only each preset against the floor at 1M vertices,
+# three alternated rounds, medians, in ~12 minutes, into results/benchmark/floor.md).
 set -euo pipefail
 top=$(cd "$(dirname "$0")/.." && pwd)
 build=${GEOFILTER_BUILD_DIR:-$top/build}
@@ -16,7 +17,7 @@ build=${GEOFILTER_BUILD_DIR:-$top/build}
 "$build/tests/geofilter_benchmark" --meshes "$top/meshes" --out "$top/results/benchmark" \
     --pcg-seconds 30 --pcg-full-seconds 200 "$@"
 case " $* " in
-*" --preview "*|*" --region "*|*" --solve-profile "*|*" --denoise "*) ;;
+*" --preview "*|*" --region "*|*" --solve-profile "*|*" --denoise "*|*" --floor "*) ;;
 *) /usr/bin/python3 "$top/scripts/plot_benchmark.py" "$top/results/benchmark"
    # A full run is the page docs/results/benchmark.md; --quick and other partial runs are not.
    case " $* " in

@@ -239,6 +239,82 @@ int region_rows(const std::vector<std::function<NamedMesh()>>& makers, const std
     return write_table(out_dir, "region.md", table.str());
 }
 
+struct Preset {
+    const char* name;
+    TransferFunction g;
+    double s1;  // the floor solves K + M / s1
+};
+
+const std::vector<Preset>& solver_table_presets() {
+    static const std::vector<Preset> presets = {{"lowpass", design_second_order({25, 50, 1, 1.1, 0}), 25},
+                                                {"band exaggeration", design_second_order({25, 60, 1, 3, 0}), 25},
+                                                {"notch", design_second_order({630, 1260, 1, 0.01, 1.1}), 630},
+                                                {"Butterworth n = 4", design_butterworth_lowpass(25, 4), 25},
+                                                {"Butterworth n = 8", design_butterworth_lowpass(25, 8), 25}};
+    return presets;
+}
+
+// The filter as the adapters run it (sharp pairs solved exactly where that is predicted to
+// pay).
+Points fast_filter(const Mesh& m, const TransferFunction& g, FilterReport& report) {
+    FilterOptions options;
+    options.complex_factorization = exact_pair_factorization();
+    return apply_filter(m.points, m.triangles, g, options, &report);
+}
+
+// Each preset against the floor, as the README states the ratio: three rounds, each running
+// the floor and the preset once (which goes first alternates from round to round), every run
+// in a process of its own; the medians, their ratio, and every run, so that the floor's own
+// spread shows.
+int floor_ratio_rows(const std::vector<std::function<NamedMesh()>>& makers, const std::string& out_dir) {
+    constexpr int rounds = 3;
+    std::ostringstream table;
+    table << "| mesh | vertices | filter | floor, median (runs) (s) | filter, median (runs) (s) | filter / floor (medians) |\n"
+             "|---|---:|---|---|---|---:|\n";
+    std::cout << table.str() << std::flush;
+    const auto median_of = [](std::vector<double> t) {
+        std::sort(t.begin(), t.end());
+        return t[t.size() / 2];
+    };
+    const auto list = [](const std::vector<double>& t) {
+        std::string out;
+        for (double x : t) out += (out.empty() ? "" : ", ") + fmt(x);
+        return out;
+    };
+    for (const auto& make : makers) {
+        NamedMesh nm = make();
+        normalise(nm.mesh);
+        const Mesh& m = nm.mesh;
+        for (const Preset& p : solver_table_presets()) {
+            std::vector<double> floor_s, filter_s;
+            std::string failure;
+            for (int round = 0; round < rounds && failure.empty(); ++round)
+                for (int k = 0; k < 2; ++k) {
+                    const bool floor_now = (k == 0) == (round % 2 == 0);
+                    const CaseResult r = in_child<CaseResult>([&](CaseResult& r) {
+                        if (floor_now) r.floor_seconds = floor_solve(m, 1.0 / p.s1);
+                        else {
+                            FilterReport report;
+                            fast_filter(m, p.g, report);
+                            r.total = report.seconds_total;
+                        }
+                    });
+                    if (r.failure[0]) failure = r.failure;
+                    (floor_now ? floor_s : filter_s).push_back(floor_now ? r.floor_seconds : r.total);
+                }
+            std::ostringstream row;
+            row << "| " << nm.name << " | " << m.points.rows() << " | " << p.name << " | ";
+            if (!failure.empty()) row << "failed: " << failure << " |||\n";
+            else
+                row << fmt(median_of(floor_s)) << " (" << list(floor_s) << ") | " << fmt(median_of(filter_s)) << " ("
+                    << list(filter_s) << ") | " << fmt(median_of(filter_s) / median_of(floor_s)) << " |\n";
+            table << row.str();
+            std::cout << row.str() << std::flush;
+        }
+    }
+    return write_table(out_dir, "floor.md", table.str());
+}
+
 // Denoise with nothing selected on large meshes: noise of 0.3 mean edge lengths along the
 // clean mesh's normals (fixed seed). Denoise as shipped (above denoise_scoring_vertices it
 // scores its candidates on patches), three runs alternated with three of 10 steps of
@@ -470,8 +546,10 @@ int main(int argc, char** argv) {
     double pcg_budget = 60;
     double pcg_full_budget = 900;  // lowpass on meshes below 120k vertices: PCG to convergence
     // --region: only the region rows (a few minutes); --preview: only the preview rows (a minute);
-    // --solve-profile: only where a CG iteration's time goes (two minutes)
-    bool quick = false, region_only = false, preview_only = false, solve_profile_only = false, denoise_only = false;
+    // --solve-profile: only where a CG iteration's time goes (two minutes); --floor: only each
+    // preset against the floor at 1M vertices, in alternated rounds (about ten minutes)
+    bool quick = false, region_only = false, preview_only = false, solve_profile_only = false, denoise_only = false,
+         floor_only = false;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         if (a == "--out" && i + 1 < argc) out_dir = argv[++i];
@@ -483,9 +561,10 @@ int main(int argc, char** argv) {
         else if (a == "--preview") preview_only = true;
         else if (a == "--solve-profile") solve_profile_only = true;
         else if (a == "--denoise") denoise_only = true;
+        else if (a == "--floor") floor_only = true;
         else {
             std::cerr << "usage: geofilter_benchmark [--out DIR] [--meshes DIR] [--pcg-seconds S] [--pcg-full-seconds S]"
-                         " [--quick] [--region] [--preview] [--solve-profile] [--denoise]\n";
+                         " [--quick] [--region] [--preview] [--solve-profile] [--denoise] [--floor]\n";
             return 2;
         }
     }
@@ -534,21 +613,14 @@ int main(int argc, char** argv) {
                                                       makers.back()};
         return denoise_rows(quick ? std::vector<std::function<NamedMesh()>>{makers.back()} : clean, out_dir);
     }
+    if (floor_only)  // the ~1M-vertex meshes (--quick: the small ones)
+        return floor_ratio_rows(quick ? makers : std::vector<std::function<NamedMesh()>>{makers[3], makers.back()}, out_dir);
     if (region_only) {
         // The ~1M-vertex meshes: the synthetic torus and the subdivided scan (--quick: the small ones).
         return region_rows(quick ? makers : std::vector<std::function<NamedMesh()>>{makers[3], makers.back()}, out_dir);
     }
 
-    struct Preset {
-        const char* name;
-        TransferFunction g;
-        double s1;  // the floor solves K + M / s1
-    };
-    const Preset presets[] = {{"lowpass", design_second_order({25, 50, 1, 1.1, 0}), 25},
-                              {"band exaggeration", design_second_order({25, 60, 1, 3, 0}), 25},
-                              {"notch", design_second_order({630, 1260, 1, 0.01, 1.1}), 630},
-                              {"Butterworth n = 4", design_butterworth_lowpass(25, 4), 25},
-                              {"Butterworth n = 8", design_butterworth_lowpass(25, 8), 25}};
+    const std::vector<Preset>& presets = solver_table_presets();
     std::ostringstream preview;
     preview << "| mesh | vertices | first lowpass (s) | s1, s2 +10% (s) | reused | same again, Apply (s) | reused | G1 1.1 -> 1.5 (s) | reused |\n"
             << "|---|---:|---:|---:|---|---:|---|---:|---|\n";
@@ -587,10 +659,7 @@ int main(int argc, char** argv) {
             const CaseResult floor = in_child<CaseResult>([&](CaseResult& r) { r.floor_seconds = floor_solve(m, 1.0 / p.s1); });
             const CaseResult r = in_child<CaseResult>([&](CaseResult& r) {
                 FilterReport report;
-                // What the adapters run: sharp pairs solved exactly where that is predicted to pay.
-                FilterOptions fast_options;
-                fast_options.complex_factorization = exact_pair_factorization();
-                const Points fast = apply_filter(m.points, m.triangles, g, fast_options, &report);
+                const Points fast = fast_filter(m, g, report);
                 r.assembly = report.seconds_assembly;
                 r.factor = report.seconds_factorization;
                 r.solve = report.seconds_solve;
