@@ -53,10 +53,10 @@ PcgOutcome sum_shifted_solves(const BlockOperator& solve_shifted, double shift, 
     solve_shifted(y, residual);  // the seed's residual T y - T u at u = 0
     Eigen::MatrixXd sum = Eigen::MatrixXd::Zero(rows, columns);
 
-    // Each pole's shifted system is (T + s) w = T y with z = -w / sigma; its directions carry
-    // that factor already, so that their sum is z itself.
+    // Each pole's shifted system is (T + s) w = T y with s = -1 / sigma, and z = s w: its
+    // directions carry that factor already, so that their sum is z itself.
     struct Shifted {
-        Complex s, scale, weight;
+        Complex s, weight;
         double bound_per_residual;
         Eigen::ArrayXcd zeta, zeta_previous, zeta_next;
         Eigen::MatrixXd direction_re, direction_im;
@@ -70,13 +70,12 @@ PcgOutcome sum_shifted_solves(const BlockOperator& solve_shifted, double shift, 
         }
         Shifted t;
         t.s = -1.0 / sigma;
-        t.scale = -1.0 / sigma;
         t.weight = term.weight;
         t.bound_per_residual = std::abs(term.weight) / segment_distance_to_zero(sigma, shift);
         t.zeta = t.zeta_previous = Eigen::ArrayXcd::Ones(columns);
         t.zeta_next = Eigen::ArrayXcd::Zero(columns);
-        t.direction_re = t.scale.real() * residual;
-        t.direction_im = t.scale.imag() * residual;
+        t.direction_re = t.s.real() * residual;
+        t.direction_im = t.s.imag() * residual;
         shifted.push_back(std::move(t));
     }
     Eigen::MatrixXd p = residual;
@@ -132,7 +131,7 @@ PcgOutcome sum_shifted_solves(const BlockOperator& solve_shifted, double shift, 
             for (Shifted& t : shifted) {
                 const Complex ratio = t.zeta_next[c] / t.zeta[c];
                 const Complex beta_shifted = ratio * ratio * beta;
-                const Complex lead = t.zeta_next[c] * t.scale;
+                const Complex lead = t.zeta_next[c] * t.s;
                 double* re = t.direction_re.col(c).data();
                 double* im = t.direction_im.col(c).data();
                 for (Eigen::Index i = 0; i < rows; ++i) {
