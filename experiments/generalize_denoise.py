@@ -388,16 +388,16 @@ def closed_volumes(v, components):
     return {comp: c.signed_volume(v, ff) for comp, ff in components.items()}
 
 
-def noise_volume_spread(case, components):
-    """Per closed component of the truth: one standard deviation, in % of its volume, of the volume
-    change that noise like the case's makes (to first order, the sum over vertices of the volume's
-    gradient dotted with the noise; its variance estimated from the noise drawn). A uniform offset of
-    the surface is indistinguishable from this part of the noise."""
+def noise_volume_spread(case, components, volumes):
+    """Per closed component of the truth (volumes: their closed_volumes): one standard deviation, in %
+    of its volume, of the volume change that noise like the case's makes (to first order, the sum
+    over vertices of the volume's gradient dotted with the noise; its variance estimated from the
+    noise drawn). A uniform offset of the surface is indistinguishable from this part of the noise."""
     v = case["truth"]
     e = case["input"] - v
     out = {}
     for comp, ff in components.items():
-        volume = c.signed_volume(v, ff)
+        volume = volumes[comp]
         grad = np.zeros_like(v)
         a, b, d = ff[:, 0], ff[:, 1], ff[:, 2]
         np.add.at(grad, a, np.cross(v[b], v[d]) / 6)
@@ -496,7 +496,7 @@ def run_case(case, work, denoise_only, cloud=False):
             rows[key] = dict(m(v), log=setting) if key == "denoise" else dict(m(v), setting=setting)
     rows["denoise"]["seconds"] = time.perf_counter() - t
     result = {"name": case["name"], "family": case["family"], "seed": case["seed"], "vertices": len(noisy), "rows": rows,
-              "volume_noise": noise_volume_spread(case, closed)}
+              "volume_noise": noise_volume_spread(case, closed, tvol)}
     if not denoise_only:
         result["floors"] = judge(case, rows)
     return result

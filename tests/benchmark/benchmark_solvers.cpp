@@ -239,6 +239,19 @@ int region_rows(const std::vector<std::function<NamedMesh()>>& makers, const std
     return write_table(out_dir, "region.md", table.str());
 }
 
+// The median of an odd number of timings (the upper middle of an even one).
+double median_of(std::vector<double> t) {
+    std::sort(t.begin(), t.end());
+    return t[t.size() / 2];
+}
+
+// Timings in the order they were taken, for a table cell.
+std::string listed(const std::vector<double>& t, int precision) {
+    std::string out;
+    for (double x : t) out += (out.empty() ? "" : ", ") + fmt(x, precision);
+    return out;
+}
+
 struct Preset {
     const char* name;
     TransferFunction g;
@@ -272,15 +285,6 @@ int floor_ratio_rows(const std::vector<std::function<NamedMesh()>>& makers, cons
     table << "| mesh | vertices | filter | floor, median (runs) (s) | filter, median (runs) (s) | filter / floor (medians) |\n"
              "|---|---:|---|---|---|---:|\n";
     std::cout << table.str() << std::flush;
-    const auto median_of = [](std::vector<double> t) {
-        std::sort(t.begin(), t.end());
-        return t[t.size() / 2];
-    };
-    const auto list = [](const std::vector<double>& t) {
-        std::string out;
-        for (double x : t) out += (out.empty() ? "" : ", ") + fmt(x);
-        return out;
-    };
     for (const auto& make : makers) {
         NamedMesh nm = make();
         normalise(nm.mesh);
@@ -306,8 +310,8 @@ int floor_ratio_rows(const std::vector<std::function<NamedMesh()>>& makers, cons
             row << "| " << nm.name << " | " << m.points.rows() << " | " << p.name << " | ";
             if (!failure.empty()) row << "failed: " << failure << " |||\n";
             else
-                row << fmt(median_of(floor_s)) << " (" << list(floor_s) << ") | " << fmt(median_of(filter_s)) << " ("
-                    << list(filter_s) << ") | " << fmt(median_of(filter_s) / median_of(floor_s)) << " |\n";
+                row << fmt(median_of(floor_s)) << " (" << listed(floor_s, 2) << ") | " << fmt(median_of(filter_s)) << " ("
+                    << listed(filter_s, 2) << ") | " << fmt(median_of(filter_s) / median_of(floor_s)) << " |\n";
             table << row.str();
             std::cout << row.str() << std::flush;
         }
@@ -331,10 +335,6 @@ int denoise_rows(const std::vector<std::function<NamedMesh()>>& makers, const st
              " RMS / h: input, Denoise, whole, Taubin x10 |\n"
              "|---|---:|---:|---|---|---|---:|---:|---|---|\n";
     std::cout << table.str() << std::flush;
-    const auto median_of = [](std::vector<double> t) {
-        std::sort(t.begin(), t.end());
-        return t[t.size() / 2];
-    };
     for (const auto& make : makers) {
         NamedMesh nm = make();
         normalise(nm.mesh);
@@ -370,16 +370,11 @@ int denoise_rows(const std::vector<std::function<NamedMesh()>>& makers, const st
             const double t0 = now();
             apply_filter(noisy.points, noisy.triangles, d.design.g, o);
             const double lowpass_s = now() - t0;
-            const auto list = [](const std::vector<double>& t, int precision) {
-                std::string out;
-                for (double x : t) out += (out.empty() ? "" : ", ") + fmt(x, precision);
-                return out;
-            };
-            row << fmt(median, 1) << " | " << list(denoise_s, 1) << " | " << fmt(d.seconds.variance, 1) << ", "
+            row << fmt(median, 1) << " | " << listed(denoise_s, 1) << " | " << fmt(d.seconds.variance, 1) << ", "
                 << fmt(d.seconds.direction, 1) << ", " << fmt(d.seconds.scoring, 1) << ", " << fmt(d.seconds.final_run, 1) << " | "
                 << (d.scoring_patches ? std::to_string(d.scoring_patches) + " patches, " + std::to_string(d.scored_vertices) + " vertices"
                                       : std::string("the whole mesh"))
-                << " | " << whole_s << " | " << fmt(lowpass_s, 1) << " | " << fmt(median_of(taubin_s)) << " (" << list(taubin_s, 2)
+                << " | " << whole_s << " | " << fmt(lowpass_s, 1) << " | " << fmt(median_of(taubin_s)) << " (" << listed(taubin_s, 2)
                 << ") | " << fmt(rms(noisy.points), 3) << ", " << fmt(rms(d.points), 3) << ", " << whole_rms << ", "
                 << fmt(rms(taubin_points), 3) << " |\n";
         } catch (const std::exception& e) {

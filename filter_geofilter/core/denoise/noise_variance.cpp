@@ -159,12 +159,15 @@ NoiseVariance estimate_noise_variance(const Points& points, const Triangles& tri
             }
         }
     }
+    // Stands out, and that much farther than every neighbour but its loudest.
+    const auto clear_of_others = [&](Eigen::Index k) {
+        return stands_out(k) && std::abs(residual[k]) > denoise_impulse_alone * others[k];
+    };
     for (Eigen::Index i = 0; i < points.rows(); ++i) {
         const int j = loudest[static_cast<std::size_t>(i)];
-        if (j < 0 || !stands_out(i) || !(std::abs(residual[i]) > denoise_impulse_alone * others[i])) continue;
+        if (j < 0 || !clear_of_others(i)) continue;
         const bool alone = std::abs(residual[i]) > denoise_impulse_alone * std::abs(residual[j]);
-        const bool one_of_a_pair = loudest[static_cast<std::size_t>(j)] == i && stands_out(j) &&
-                                   std::abs(residual[j]) > denoise_impulse_alone * others[j];
+        const bool one_of_a_pair = loudest[static_cast<std::size_t>(j)] == i && clear_of_others(j);
         if (alone || one_of_a_pair) out.impulses.push_back(static_cast<int>(i));
     }
     out.along_normals = sum / vertices;

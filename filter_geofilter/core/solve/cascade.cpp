@@ -73,6 +73,8 @@ double spectrum_upper_bound(const SparseMatrix& symmetric) {
     return row_sums.size() ? row_sums.maxCoeff() : 0.0;
 }
 
+double factor_shift_for(std::complex<double> pole) { return pole.imag() == 0 ? -pole.real() : std::abs(pole); }
+
 double pair_operator_lower_bound(std::complex<double> r) {
     // |s - r|^2 = (s - Re r)^2 + (Im r)^2 is smallest at s = max(Re r, 0).
     const double nearest = std::max(r.real(), 0.0);

@@ -52,6 +52,10 @@ Eigen::MatrixXd apply_factored_transfer(const TransferFunction& g, const Eigen::
 // absolute row sum).
 double spectrum_upper_bound(const SparseMatrix& symmetric);
 
+// The shift c of the real factor Kt + c I a pole calls for: |r| for a complex pole (the fastest
+// CG, shifted_pair_cg.h), -r for a real one (its exact solve).
+double factor_shift_for(std::complex<double> pole);
+
 // The smallest value of |s - r|^2 over s >= 0: the smallest eigenvalue of (Kt - r)(Kt - conj r)
 // can be no smaller, whatever the mesh.
 double pair_operator_lower_bound(std::complex<double> r);

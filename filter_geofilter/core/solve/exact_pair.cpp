@@ -15,7 +15,7 @@ namespace {
 bool factor_needed_elsewhere(const TransferFunction& g, std::complex<double> r, double shift) {
     const auto same = [](double a, double b) { return std::abs(a - b) <= 1e-9 * std::max(a, b); };
     for (const std::complex<double>& p : g.poles)
-        if (p.imag() >= 0 && p != r && same(p.imag() == 0 ? -p.real() : std::abs(p), shift)) return true;
+        if (p.imag() >= 0 && p != r && same(factor_shift_for(p), shift)) return true;
     return false;
 }
 

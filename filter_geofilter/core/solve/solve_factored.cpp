@@ -283,12 +283,11 @@ private:
 
 namespace {
 
-// The shift at which every pole of g calls for the factor (|r| for a pair, -r for a real
-// pole), if they agree.
+// The shift at which every pole of g calls for the factor (factor_shift_for), if they agree.
 std::optional<double> one_shift_for_every_pole(const TransferFunction& g) {
     std::optional<double> shift;
     for (const std::complex<double>& p : g.poles) {
-        const double own = p.imag() == 0 ? -p.real() : std::abs(p);
+        const double own = factor_shift_for(p);
         if (!(own > 0)) return std::nullopt;
         if (!shift) shift = own;
         else if (std::abs(own - *shift) > 1e-9 * *shift) return std::nullopt;
@@ -318,7 +317,8 @@ Eigen::MatrixXd apply_factored_transfer(const TransferFunction& g, const Eigen::
         const Eigen::MatrixXd x = solver.conjugate_pair(g.poles[0], rhs, allowed_error * std::abs(c.a2), 0.5);
         return g_inf * q + x / c.a2;
     }
-    if (g.poles.size() > 2 || (g.poles.size() == 2 && g.poles[0].imag() == 0))
+    const bool several_pole_groups = g.poles.size() > 2 || (g.poles.size() == 2 && g.poles[0].imag() == 0);
+    if (several_pole_groups)
         if (const std::optional<double> shift = one_shift_for_every_pole(g))
             if (const std::optional<PartialFractions> fractions = partial_fractions(g))
                 if (std::optional<Eigen::MatrixXd> x = solver.poles_at_one_shift(*fractions, *shift, q, allowed_error))
