@@ -267,14 +267,16 @@ PYBIND11_MODULE(geofilter, m) {
         .def_property_readonly("at_infinity", &TransferFunction::at_infinity)
         .def("__repr__", &TransferFunction::describe);
 
+    const std::string cloud_doc =
+        "The Laplace-Beltrami operator of a point cloud V (n x 3), in the units of the mesh filters' (a sphere of "
+        "radius r: 2/r^2): each point's Delaunay fan in its tangent plane (fitted to its k nearest neighbours) among "
+        "the nearest " + std::to_string(PointCloudOptions{}.fan_candidates) + " (k, if fewer), the cotangent "
+        "stiffness and lumped mass of all fans, divided by 3 (Sharp & Crane 2020). Returns a dict: K = (rows, cols, "
+        "values), each entry once (dense: Kd = np.zeros((n, n)); Kd[rows, cols] = values), M = the lumped mass (n,), "
+        "normals = unit normals oriented consistently (n, 3), triangles = the fans (m, 3): any filter of this module "
+        "run as filter(V, triangles) filters the cloud with this operator.";
     m.def("point_cloud_laplacian", &point_cloud_operator, py::arg("V"), py::arg("k") = PointCloudOptions{}.neighbours,
-          "The Laplace-Beltrami operator of a point cloud V (n x 3), in the units of the mesh filters' "
-          "(a sphere of radius r: 2/r^2): each point's Delaunay fan in its tangent plane among its k nearest "
-          "neighbours, the cotangent stiffness and lumped mass of all fans, divided by 3 (Sharp & Crane 2020). "
-          "Returns a dict: K = (rows, cols, values), each entry once (dense: Kd = np.zeros((n, n)); "
-          "Kd[rows, cols] = values), M = the lumped mass (n,), normals = unit normals oriented consistently "
-          "(n, 3), triangles = the fans (m, 3): any filter of this module run as filter(V, triangles) filters the "
-          "cloud with this operator.");
+          cloud_doc.c_str());
 
     py::list names;
     for (const FilterSpec& spec : filter_table()) names.append(spec.cli_name);

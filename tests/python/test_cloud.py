@@ -31,7 +31,7 @@ def test_lowpass_of_a_meshs_vertices_as_a_cloud_matches_the_meshs():
     assert moved > 1e-3
     assert apart > 1e-6 * moved  # different operators
     assert apart < 0.05 * moved
-    assert report["log"][0].startswith(f"point cloud: {len(v)} points, k = 30 neighbours, ")
+    assert report["log"][0].startswith(f"point cloud: {len(v)} points, k = 30 neighbours (fans among the nearest 15), ")
     normals = report["normals"]
     assert normals.shape == v.shape
     assert np.min(np.sum(normals * v, axis=1)) > 0

@@ -49,7 +49,7 @@ TEST(CloudFilter, SphereCloudScalesByGAtTwoOverRSquared) {
         const double expected = out.transfer(2 / (r * r)), measured = mean_radius(out.points) / r;
         std::cout << name << ": mean radius ratio " << measured << ", G(2/r^2) " << expected << "\n";
         EXPECT_NEAR(measured, expected, 0.01 * std::abs(expected)) << name;
-        EXPECT_TRUE(log_has(out, "point cloud: 3000 points, k = 30 neighbours, ")) << name;
+        EXPECT_TRUE(log_has(out, "point cloud: 3000 points, k = 30 neighbours (fans among the nearest 15), ")) << name;
         EXPECT_TRUE(log_has(out, " local triangles (the cloud's Laplacian)")) << name;
         ASSERT_EQ(out.normals.rows(), cloud.rows());
         EXPECT_GT((out.normals.array() * cloud.array()).rowwise().sum().minCoeff(), 0) << "normals point outwards";

@@ -230,18 +230,19 @@ std::vector<int> convex_hull(const std::vector<Eigen::Vector2d>& w) {
 // points. Two hull-consecutive neighbours a, b make a Delaunay triangle with the centre where
 // their Voronoi edges meet, which is where (centre, a, b) turns counter-clockwise; on the open
 // side of a boundary point they do not.
-void append_delaunay_fan(const Points& points, int centre, const NeighbourTable& neighbours, const Frame& frame,
-                         std::vector<Eigen::Vector3i>& triangles) {
+// Among the first `candidates` neighbours of the centre.
+void append_delaunay_fan(const Points& points, int centre, const NeighbourTable& neighbours, int candidates,
+                         const Frame& frame, std::vector<Eigen::Vector3i>& triangles) {
     const Eigen::Vector3d side = frame.normal.cross(frame.tangent);
     std::vector<Eigen::Vector2d> projected, inverted;
     std::vector<int> point_of;
     double farthest = 0;
-    for (Eigen::Index j = 0; j < neighbours.cols(); ++j) {
+    for (int j = 0; j < candidates; ++j) {
         const Eigen::Vector3d d = (points.row(neighbours(centre, j)) - points.row(centre)).transpose();
         projected.emplace_back(d.dot(frame.tangent), d.dot(side));
         farthest = std::max(farthest, projected.back().norm());
     }
-    for (Eigen::Index j = 0; j < neighbours.cols(); ++j) {
+    for (int j = 0; j < candidates; ++j) {
         const Eigen::Vector2d& q = projected[j];
         // A neighbour straight above the centre (a fold of the cloud within the neighbourhood)
         // has no direction in the plane.
@@ -284,6 +285,9 @@ NeighbourTable nearest_neighbours(const Points& points, int k) {
 PointCloudLaplacian point_cloud_laplacian(const Points& points, const PointCloudOptions& options) {
     const int k = options.neighbours;
     check_cloud(points, k);
+    if (options.fan_candidates < 3)
+        throw Error("a point's local triangulation needs at least 3 candidate neighbours (asked: " +
+                    std::to_string(options.fan_candidates) + ")");
     const int n = static_cast<int>(points.rows());
 
     PointCloudLaplacian result;
@@ -294,7 +298,8 @@ PointCloudLaplacian point_cloud_laplacian(const Points& points, const PointCloud
 
     std::vector<Eigen::Vector3i> fans;
     fans.reserve(static_cast<size_t>(n) * 7);
-    for (int i = 0; i < n; ++i) append_delaunay_fan(points, i, result.neighbours, frames[i], fans);
+    result.fan_candidates = std::min(options.fan_candidates, k);
+    for (int i = 0; i < n; ++i) append_delaunay_fan(points, i, result.neighbours, result.fan_candidates, frames[i], fans);
 
     result.normals.resize(n, 3);
     for (int i = 0; i < n; ++i) result.normals.row(i) = frames[i].normal.transpose();
