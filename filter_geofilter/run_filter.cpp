@@ -680,7 +680,12 @@ RunOutput run_filter(const FilterSpec& spec, const ParameterValues& values, cons
     RunOutput out = filter_surface(spec, values, on_surface, &surface);
     std::vector<std::string> head{"point cloud: " + std::to_string(input.points.rows()) + " points, k = " +
                                   std::to_string(surface.cloud.neighbours.cols()) + " neighbours (fans among the nearest " +
-                                  std::to_string(surface.cloud.fan_candidates) + "), " +
+                                  std::to_string(surface.cloud.fan_candidates) +
+                                  (surface.cloud.fans_from_all_neighbours
+                                       ? ", " + std::to_string(surface.cloud.fans_from_all_neighbours) +
+                                             " points among all: their nearest lie on a line"
+                                       : std::string()) +
+                                  "), " +
                                   std::to_string(surface.cloud.local_triangles.rows()) +
                                   " local triangles (the cloud's Laplacian)"};
     for (const auto& w : surface.warnings) head.push_back("warning: " + w);

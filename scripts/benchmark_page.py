@@ -40,8 +40,9 @@ keeps between the two runs:
 ## Point clouds
 
 The lowpass on each large mesh's vertices alone, as a point cloud: the cloud's Laplacian (k-d
-tree, each point's Delaunay fan in its tangent plane, k = 30), then the same filter; next to
-it the same lowpass on the mesh. Each in a process of its own (peak RSS).
+tree, each point's tangent plane fitted to its 30 nearest, its Delaunay fan among the nearest
+15), then the same filter; next to it the same lowpass on the mesh. Each in a process of its
+own (peak RSS).
 
 {clouds}
 """

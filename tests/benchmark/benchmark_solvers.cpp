@@ -542,9 +542,10 @@ int main(int argc, char** argv) {
     double pcg_full_budget = 900;  // lowpass on meshes below 120k vertices: PCG to convergence
     // --region: only the region rows (a few minutes); --preview: only the preview rows (a minute);
     // --solve-profile: only where a CG iteration's time goes (two minutes); --floor: only each
-    // preset against the floor at 1M vertices, in alternated rounds (about ten minutes)
+    // preset against the floor at 1M vertices, in alternated rounds (about ten minutes);
+    // --clouds: only the point-cloud rows, into clouds.md (about three minutes)
     bool quick = false, region_only = false, preview_only = false, solve_profile_only = false, denoise_only = false,
-         floor_only = false;
+         floor_only = false, clouds_only = false;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         if (a == "--out" && i + 1 < argc) out_dir = argv[++i];
@@ -557,9 +558,10 @@ int main(int argc, char** argv) {
         else if (a == "--solve-profile") solve_profile_only = true;
         else if (a == "--denoise") denoise_only = true;
         else if (a == "--floor") floor_only = true;
+        else if (a == "--clouds") clouds_only = true;
         else {
             std::cerr << "usage: geofilter_benchmark [--out DIR] [--meshes DIR] [--pcg-seconds S] [--pcg-full-seconds S]"
-                         " [--quick] [--region] [--preview] [--solve-profile] [--denoise] [--floor]\n";
+                         " [--quick] [--region] [--preview] [--solve-profile] [--denoise] [--floor] [--clouds]\n";
             return 2;
         }
     }
@@ -613,6 +615,14 @@ int main(int argc, char** argv) {
     if (region_only) {
         // The ~1M-vertex meshes: the synthetic torus and the subdivided scan (--quick: the small ones).
         return region_rows(quick ? makers : std::vector<std::function<NamedMesh()>>{makers[3], makers.back()}, out_dir);
+    }
+
+    if (clouds_only) {
+        if (std::system(("mkdir -p '" + out_dir + "'").c_str()) != 0) return 1;
+        const std::string clouds = cloud_rows(makers);
+        std::cout << clouds;
+        std::ofstream(out_dir + "/clouds.md") << clouds;
+        return 0;
     }
 
     const std::vector<Preset>& presets = solver_table_presets();

@@ -237,6 +237,29 @@ TEST(PointCloudLaplacian, FansDoNotReachAcrossAThinSlab) {
     EXPECT_GT(across(point_cloud_laplacian(p, all_candidates)), 100);  // what the test would catch
 }
 
+// A dense scan line through a sparse grid: a line point's nearest 15 all lie on the line, so
+// they make no triangle, and its fan comes from all 30 neighbours, which reach the grid.
+TEST(PointCloudLaplacian, APointWhoseNearestLieOnALineTakesItsFanFromAllNeighbours) {
+    const int side = 12;
+    std::vector<Eigen::RowVector3d> rows;
+    for (int i = 0; i < side; ++i)
+        for (int j = 0; j < side; ++j) rows.emplace_back(i, j, 0.0);
+    const int line_first = static_cast<int>(rows.size());
+    for (int t = 0; t <= 60; ++t) rows.emplace_back(3.0 + 0.06 * t, 5.5, 0.0);  // spacing 0.06, between rows 5 and 6
+    Points p(static_cast<Eigen::Index>(rows.size()), 3);
+    for (size_t i = 0; i < rows.size(); ++i) p.row(static_cast<Eigen::Index>(i)) = rows[i];
+    PointCloudLaplacian cloud;
+    ASSERT_NO_THROW(cloud = point_cloud_laplacian(p));
+    EXPECT_GT(cloud.fans_from_all_neighbours, 30);
+    // Every line point is in a triangle with a grid point.
+    std::vector<bool> reaches_grid(p.rows(), false);
+    for (Eigen::Index f = 0; f < cloud.local_triangles.rows(); ++f)
+        for (int a = 0; a < 3; ++a)
+            for (int b = 0; b < 3; ++b)
+                if (cloud.local_triangles(f, b) < line_first) reaches_grid[cloud.local_triangles(f, a)] = true;
+    for (Eigen::Index i = line_first; i < p.rows(); ++i) EXPECT_TRUE(reaches_grid[i]) << i;
+}
+
 TEST(PointCloudLaplacian, AStraightBorderOfALatticeAddsNoSliverAcrossItsOpenSide) {
     // A lattice of one scalene triangle, tilted and far from the origin, 1e-4 apart: what a
     // subdivided scan's points look like. A border point's two border neighbours lie straight

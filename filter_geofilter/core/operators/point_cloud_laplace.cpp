@@ -223,15 +223,15 @@ std::vector<int> convex_hull(const std::vector<Eigen::Vector2d>& w) {
     return hull;
 }
 
-// Appends the triangles of point `centre`'s Delaunay fan among its neighbours, projected on the
-// tangent plane. The Delaunay neighbours of the centre are the points whose bisector with it
-// bounds its Voronoi cell; inverting each projected neighbour q to q / |q|^2 turns those
-// bisectors into points, and the cell's edges, in order, into the convex hull of the inverted
-// points. Two hull-consecutive neighbours a, b make a Delaunay triangle with the centre where
-// their Voronoi edges meet, which is where (centre, a, b) turns counter-clockwise; on the open
-// side of a boundary point they do not.
-// Among the first `candidates` neighbours of the centre.
-void append_delaunay_fan(const Points& points, int centre, const NeighbourTable& neighbours, int candidates,
+// Appends the triangles of point `centre`'s Delaunay fan among its first `candidates`
+// neighbours, projected on the tangent plane. The Delaunay neighbours of the centre are the
+// points whose bisector with it bounds its Voronoi cell; inverting each projected neighbour q
+// to q / |q|^2 turns those bisectors into points, and the cell's edges, in order, into the
+// convex hull of the inverted points. Two hull-consecutive neighbours a, b make a Delaunay
+// triangle with the centre where their Voronoi edges meet, which is where (centre, a, b)
+// turns counter-clockwise; on the open side of a boundary point they do not. False when no
+// triangle was made.
+bool append_delaunay_fan(const Points& points, int centre, const NeighbourTable& neighbours, int candidates,
                          const Frame& frame, std::vector<Eigen::Vector3i>& triangles) {
     const Eigen::Vector3d side = frame.normal.cross(frame.tangent);
     std::vector<Eigen::Vector2d> projected, inverted;
@@ -263,9 +263,7 @@ void append_delaunay_fan(const Points& points, int centre, const NeighbourTable&
         if (cross2(qa, qb) > kMinFanAngleSine * qa.norm() * qb.norm())
             triangles.emplace_back(centre, neighbours(centre, a), neighbours(centre, b));
     }
-    if (triangles.size() == before)
-        throw Error("point " + std::to_string(centre) +
-                    " has no triangle around it: its neighbours lie on a line through it in its tangent plane");
+    return triangles.size() > before;
 }
 
 } // namespace
@@ -299,7 +297,15 @@ PointCloudLaplacian point_cloud_laplacian(const Points& points, const PointCloud
     std::vector<Eigen::Vector3i> fans;
     fans.reserve(static_cast<size_t>(n) * 7);
     result.fan_candidates = std::min(options.fan_candidates, k);
-    for (int i = 0; i < n; ++i) append_delaunay_fan(points, i, result.neighbours, result.fan_candidates, frames[i], fans);
+    for (int i = 0; i < n; ++i) {
+        if (append_delaunay_fan(points, i, result.neighbours, result.fan_candidates, frames[i], fans)) continue;
+        // The nearest few on a line (a dense scan line through sparser points, the edge of a
+        // midpoint-subdivided sliver): all k, as many as the plane was fitted to.
+        ++result.fans_from_all_neighbours;
+        if (!append_delaunay_fan(points, i, result.neighbours, k, frames[i], fans))
+            throw Error("point " + std::to_string(i) +
+                        " has no triangle around it: its neighbours lie on a line through it in its tangent plane");
+    }
 
     result.normals.resize(n, 3);
     for (int i = 0; i < n; ++i) result.normals.row(i) = frames[i].normal.transpose();

@@ -14,14 +14,15 @@ struct PointCloudOptions {
     // plane averages out noise of a third of the spacing.
     int neighbours = 30;
     // The nearest of them that may join its local triangulation. A Delaunay 1-ring typically
-    // has 6 points. Far candidates enter the fan through gaps that noise opens in the projected
-    // ring, or from across a thin part (the bunny's ear points 3-6 spacings from its head joined
-    // them, and were pulled about 4 times the noise off their surface): on the tuning half of the cloud cases
-    // (generalize_denoise --as-clouds) Denoise ended at 0.69 of the input's RMS (geometric mean)
-    // with 8 to 15 candidates, 0.70 with 20, 0.72 with 30. An irregular sampling needs more of
-    // them to find its whole ring: on vertices slid by a quarter spacing, the lowpass's distance
-    // to the mesh operator's was 3.2 % of its motion with 10, 1.5 % with 12, 0.82 % with 15 and
-    // 0.79 % from 18 on. 15 is the largest count of the noise's plateau.
+    // has 6 points. Far candidates enter the fan through gaps that noise opens in the
+    // projected ring, or from across a thin part (points of the bunny's ears, 3-6 spacings
+    // from its head, joined it, and were pulled about 4 times the noise off their surface).
+    // On the tuning half of the cloud cases (generalize_denoise --as-clouds) Denoise ended at
+    // 0.69 of the input's RMS (geometric mean) with 8 to 15 candidates, 0.70 with 20, 0.72
+    // with 30 and with 6. An irregular sampling needs more of them to close its ring: on
+    // vertices slid by a quarter spacing the lowpass's distance to the mesh operator's was
+    // 3.2 % of its motion with 10, 1.5 % with 12, 0.82 % with 15 and 0.79 % from 18 on. So 15,
+    // the largest count of the plateau.
     int fan_candidates = 15;
 };
 
@@ -35,6 +36,7 @@ struct PointCloudLaplacian {
     Points normals;
     NeighbourTable neighbours;
     int fan_candidates = 0;  // the first columns of `neighbours` that the fans were built from
+    long fans_from_all_neighbours = 0;  // points whose nearest fan_candidates made no triangle
     // Every point's local Delaunay fan, each triangle (centre, a, b) counter-clockwise about
     // the centre's normal: a soup in which most triangles appear three times. Its cotangent K
     // and M are three times `laplacian`'s, so M^-1 K is the same: apply_filter(points,
