@@ -617,13 +617,7 @@ int main(int argc, char** argv) {
         return region_rows(quick ? makers : std::vector<std::function<NamedMesh()>>{makers[3], makers.back()}, out_dir);
     }
 
-    if (clouds_only) {
-        if (std::system(("mkdir -p '" + out_dir + "'").c_str()) != 0) return 1;
-        const std::string clouds = cloud_rows(makers);
-        std::cout << clouds;
-        std::ofstream(out_dir + "/clouds.md") << clouds;
-        return 0;
-    }
+    if (clouds_only) return write_table(out_dir, "clouds.md", cloud_rows(makers));
 
     const std::vector<Preset>& presets = solver_table_presets();
     std::ostringstream preview;

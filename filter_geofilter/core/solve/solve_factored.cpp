@@ -81,7 +81,6 @@ public:
         else if (exact_pair_pays(r, shift))
             if (std::optional<Eigen::MatrixXd> x = exact_pair(r, y, allowed_error, progress)) return *x;
         const double twice_re = 2 * r.real(), modulus2 = std::norm(r);
-        factorize(shift, progress);
         const auto t = std::chrono::steady_clock::now();
         const SparseMatrix& kt = state_.kt;
         const BlockOperator quadratic = [&](const Eigen::MatrixXd& in, Eigen::MatrixXd& out) {
