@@ -47,7 +47,15 @@ NoiseDirection estimate_noise_direction(const Points& points, const Triangles& t
     };
 
     const Eigen::MatrixXd normal = smoothed_vertex_normals(points, triangles);
-    const Eigen::MatrixXd offset = -(degree.cwiseMax(1.0).cwiseInverse().asDiagonal() * (k * points));
+    // The umbrella offset of the umbrella offsets: the clean surface's part of an offset (its
+    // curvature along the normal, long edges' more) changes slowly from vertex to vertex and
+    // mostly cancels, while independent noise still adds the same to each axis, so the pure
+    // noise's ratio stays 2. With the offsets themselves, noise in random directions on a
+    // torus sampled 4x longer one way read 1.93, below noise along the normals' largest.
+    const auto umbrella_offset = [&](const Eigen::MatrixXd& x) -> Eigen::MatrixXd {
+        return -(degree.cwiseMax(1.0).cwiseInverse().asDiagonal() * (k * x));
+    };
+    const Eigen::MatrixXd offset = umbrella_offset(umbrella_offset(points));
     Eigen::MatrixXd parts(points.rows(), 2);  // squared normal and tangential parts
     std::vector<bool> used(points.rows());
     for (Eigen::Index i = 0; i < points.rows(); ++i) {

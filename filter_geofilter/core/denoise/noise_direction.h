@@ -24,16 +24,20 @@ struct NoiseDirection {
 };
 
 // Noise that is independent from vertex to vertex and of variance s^2 along each axis it
-// moves adds ~s^2 (1 + 1/degree) to each squared component of the umbrella offset: the
-// normal part of the offset then measures the noise along the normals, the tangential part
-// (two axes) twice that when the noise is isotropic and nothing when it is along the
-// normals. The clean mesh adds its own irregular sampling to the tangential part and its
-// curvature to the normal part, both unknown; the ratio is therefore taken where the mesh is
-// most regular: each part is averaged over a few rings of neighbours and the ratio is that
-// of their 5 % quantiles over the mesh. Isotropic from a ratio of 2 (the pure-noise value)
-// up. Measured on five scans with Gaussian noise of 0.1-0.5 mean edge lengths: 0.01-1.92
-// along the normals (15 cases), 2.30-4.89 in random directions (7 cases; docs/results.md
-// section 4).
+// moves adds the same to each squared component of the umbrella offset (mean of the
+// neighbours minus the vertex) and of that offset's own offset, which is what is split: the
+// normal part then measures the noise along the normals, the tangential part (two axes)
+// twice that when the noise is isotropic and nothing when it is along the normals. The clean
+// mesh adds its own irregular sampling to the tangential part and its curvature to the
+// normal part; taking the offset of the offsets cancels most of the curvature, which changes
+// slowly along the surface, and the ratio is taken where the mesh is most regular: each part
+// is averaged over a few rings of neighbours and the ratio is that of their 5 % quantiles over
+// the mesh. Isotropic from a ratio of 2 (the pure-noise value) up. Measured on the
+// comparison's five scans with Gaussian noise of 0.1-0.5 mean edge lengths: 0.005-1.72 along
+// the normals (15 cases), 2.44-6.52 in random directions (7 cases); on the tuning half of
+// experiments/generalize_denoise, 0.002-1.12 and 2.33-4.82, its tori sampled 3.6-4.5x longer
+// one way and noised in random directions 2.51-2.59 (with the offsets themselves, 1.93-1.94:
+// read as along the normals).
 NoiseDirection estimate_noise_direction(const Points& points, const Triangles& triangles);
 
 // Unit vertex normals averaged over 3 rings of neighbours: the directions to split the
