@@ -102,7 +102,9 @@ SelectedBumpDenoise denoise_selected_bump(const Points& input, const Points& low
             out.points = input;
         } else {
             out.outcome = SelectedBumpOutcome::FlatLowpass;
-            out.points = flat;
+            BaseLevelReport base;
+            out.points = to_base_level(input, flat, triangles, &base);
+            out.base_offset = base.largest_offset;
         }
     } else {
         out.outcome = SelectedBumpOutcome::Unchanged;

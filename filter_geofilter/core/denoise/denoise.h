@@ -3,6 +3,7 @@
 // measurement (experiments/compare_denoise.py, docs/results.md), not tuned per mesh.
 #pragma once
 
+#include "core/denoise/base_level.h"
 #include "core/denoise/bump_pattern.h"
 #include "core/design/butterworth.h"
 #include "core/feature/feature.h"
@@ -79,6 +80,7 @@ struct SelectedBumpDenoise {
     double removed_detail = 0;
     double flat_volume_change = 0;  // the flat lowpass's largest relative change of a closed component's volume
     double flat_radius = 0;         // the bump radius the flat lowpass was cut for (0: none was made)
+    double base_offset = 0;         // how far the flat lowpass was moved back to the base (to_base_level)
 };
 
 // Whether the lowpass for a selected bump holds the mesh's open boundary in place: whenever
