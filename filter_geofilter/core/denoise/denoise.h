@@ -98,8 +98,8 @@ using LowpassForBump = std::function<Points(double radius)>;
 // `options`). The pattern of bumps like it is removed (remove_bump_pattern). When no pattern
 // explains the selection (bumps of another profile, a texture, noise as large as the bump),
 // returning the input would be a silent no-op; the flat lowpass's motion along the normals
-// (normal_motion.h) is returned instead when it
-// removed detail at the selection higher than bump_min_height of its radius, the height
+// (normal_motion.h), moved back to the pattern's base (to_base_level), is returned instead
+// when it removed detail at the selection higher than bump_min_height of its radius, the height
 // below which a selection is a flat patch; below that the input is returned unchanged, and
 // so it is when the flat lowpass changes a closed component's volume by more than
 // denoise_flat_max_volume_change. The flat lowpass is cut for the smaller of the selection's
