@@ -16,9 +16,9 @@ struct BaseLevelReport {
 // its median, weighted by area, over each connected component. Each closed component of
 // `smoothed` is moved along its vertex normals by its median of (input - smoothed) . n, so a
 // pattern of mixed signs, whose median is near zero, stays where the lowpass put it. A
-// component with a boundary is not moved: Denoise holds a boundary where it is for a selected
-// bump (denoise_bump_holds_boundary), and that fixes its level. Vertices in no face are never
-// moved.
+// component that is not closed (closed_components) is not moved: Denoise holds a boundary
+// where it is for a selected bump (denoise_bump_holds_boundary), and that fixes its level.
+// Vertices in no face are never moved.
 Points to_base_level(const Points& input, const Points& smoothed, const Triangles& triangles,
                      BaseLevelReport* report = nullptr);
 

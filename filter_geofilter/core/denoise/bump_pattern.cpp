@@ -226,17 +226,10 @@ Points remove_bump_pattern(const Points& input, const Points& lowpassed, const T
     Points out = input;
 
     const Eigen::MatrixXd normal = vertex_normals(lowpassed, triangles);
-    Eigen::VectorXd area = Eigen::VectorXd::Zero(n);
+    const Eigen::VectorXd area = vertex_areas(lowpassed, triangles);
     std::vector<bool> used(static_cast<size_t>(n), false);
-    for (Eigen::Index f = 0; f < triangles.rows(); ++f) {
-        const Eigen::RowVector3d a = lowpassed.row(triangles(f, 0)), b = lowpassed.row(triangles(f, 1)),
-                                 c = lowpassed.row(triangles(f, 2));
-        const double third_of_area = (b - a).cross(c - a).norm() / 6;
-        for (int k = 0; k < 3; ++k) {
-            area[triangles(f, k)] += third_of_area;
-            used[triangles(f, k)] = true;
-        }
-    }
+    for (Eigen::Index f = 0; f < triangles.rows(); ++f)
+        for (int k = 0; k < 3; ++k) used[triangles(f, k)] = true;
     const double mean_edge = mean_edge_length(lowpassed, triangles);
     Eigen::VectorXd removed = Eigen::VectorXd::Zero(n);  // d: the input's height above the lowpassed surface
     for (Eigen::Index v = 0; v < n; ++v)

@@ -4,48 +4,21 @@
 
 #include <algorithm>
 #include <cmath>
-#include <tuple>
 #include <vector>
 
 namespace geofilter {
 
 namespace {
 
-// Volume, area and the closedness of each component: closed when every edge of its faces
-// is used exactly once in each direction (two consistently oriented faces).
+// The faces of each component, and whether it is closed (closed_components).
 struct ComponentFaces {
     std::vector<std::vector<Eigen::Index>> faces;
     std::vector<bool> closed;
 };
 
 ComponentFaces faces_by_component(const Triangles& triangles, const std::vector<int>& component, int count) {
-    ComponentFaces out{std::vector<std::vector<Eigen::Index>>(count), std::vector<bool>(count, true)};
-    // Each directed edge as (smaller end, larger end, runs forwards): sorted, a closed
-    // surface's edges come in pairs, one each way.
-    struct DirectedEdge {
-        int low, high;
-        bool forwards;
-        bool operator<(const DirectedEdge& o) const {
-            return std::tie(low, high, forwards) < std::tie(o.low, o.high, o.forwards);
-        }
-    };
-    std::vector<DirectedEdge> edges;
-    edges.reserve(static_cast<size_t>(3 * triangles.rows()));
-    for (Eigen::Index f = 0; f < triangles.rows(); ++f) {
-        out.faces[component[triangles(f, 0)]].push_back(f);
-        for (int k = 0; k < 3; ++k) {
-            const int a = triangles(f, k), b = triangles(f, (k + 1) % 3);
-            edges.push_back({std::min(a, b), std::max(a, b), a < b});
-        }
-    }
-    std::sort(edges.begin(), edges.end());
-    for (size_t i = 0; i < edges.size();) {
-        size_t j = i;
-        while (j < edges.size() && edges[j].low == edges[i].low && edges[j].high == edges[i].high) ++j;
-        const bool one_each_way = j - i == 2 && !edges[i].forwards && edges[i + 1].forwards;
-        if (!one_each_way || edges[i].low == edges[i].high) out.closed[component[edges[i].low]] = false;
-        i = j;
-    }
+    ComponentFaces out{std::vector<std::vector<Eigen::Index>>(count), closed_components(triangles, component, count)};
+    for (Eigen::Index f = 0; f < triangles.rows(); ++f) out.faces[component[triangles(f, 0)]].push_back(f);
     return out;
 }
 

@@ -1,8 +1,8 @@
 #include "core/mesh/components.h"
 
 #include <algorithm>
-
 #include <numeric>
+#include <tuple>
 
 namespace geofilter {
 
@@ -106,6 +106,36 @@ VertexNeighbours vertex_neighbours(const Triangles& triangles, Eigen::Index vert
     }
     out.start[static_cast<size_t>(vertex_count)] = row_begin;
     return out;
+}
+
+std::vector<bool> closed_components(const Triangles& triangles, const std::vector<int>& component, int count) {
+    std::vector<bool> closed(static_cast<size_t>(count), false);
+    for (Eigen::Index f = 0; f < triangles.rows(); ++f) closed[static_cast<size_t>(component[triangles(f, 0)])] = true;
+    // Each directed edge as (smaller end, larger end, runs forwards): sorted, a closed
+    // surface's edges come in pairs, one each way.
+    struct DirectedEdge {
+        int low, high;
+        bool forwards;
+        bool operator<(const DirectedEdge& o) const {
+            return std::tie(low, high, forwards) < std::tie(o.low, o.high, o.forwards);
+        }
+    };
+    std::vector<DirectedEdge> edges;
+    edges.reserve(static_cast<size_t>(3 * triangles.rows()));
+    for (Eigen::Index f = 0; f < triangles.rows(); ++f)
+        for (int k = 0; k < 3; ++k) {
+            const int a = triangles(f, k), b = triangles(f, (k + 1) % 3);
+            edges.push_back({std::min(a, b), std::max(a, b), a < b});
+        }
+    std::sort(edges.begin(), edges.end());
+    for (size_t i = 0; i < edges.size();) {
+        size_t j = i;
+        while (j < edges.size() && edges[j].low == edges[i].low && edges[j].high == edges[i].high) ++j;
+        const bool one_each_way = j - i == 2 && !edges[i].forwards && edges[i + 1].forwards;
+        if (!one_each_way || edges[i].low == edges[i].high) closed[static_cast<size_t>(component[edges[i].low])] = false;
+        i = j;
+    }
+    return closed;
 }
 
 } // namespace geofilter

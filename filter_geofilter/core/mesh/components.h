@@ -32,4 +32,9 @@ VertexFaces vertex_faces(const Triangles& triangles, Eigen::Index vertex_count, 
 // How many labels `labels` uses.
 int component_count(const std::vector<int>& labels);
 
+// Whether each of the `count` components (labels from connected_components) is closed:
+// every edge of its faces used exactly once in each direction (two consistently oriented
+// faces), so that it encloses a volume. A component without faces is not closed.
+std::vector<bool> closed_components(const Triangles& triangles, const std::vector<int>& component, int count);
+
 } // namespace geofilter

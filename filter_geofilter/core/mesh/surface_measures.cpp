@@ -17,6 +17,17 @@ Eigen::MatrixXd vertex_normals(const Points& points, const Triangles& triangles)
     return normal;
 }
 
+Eigen::VectorXd vertex_areas(const Points& points, const Triangles& triangles) {
+    Eigen::VectorXd area = Eigen::VectorXd::Zero(points.rows());
+    for (Eigen::Index f = 0; f < triangles.rows(); ++f) {
+        const Eigen::RowVector3d a = points.row(triangles(f, 0)), b = points.row(triangles(f, 1)),
+                                 c = points.row(triangles(f, 2));
+        const double third_of_area = (b - a).cross(c - a).norm() / 6;
+        for (int k = 0; k < 3; ++k) area[triangles(f, k)] += third_of_area;
+    }
+    return area;
+}
+
 double mean_edge_length(const Points& points, const Triangles& triangles) {
     double sum = 0;
     for (Eigen::Index f = 0; f < triangles.rows(); ++f)
