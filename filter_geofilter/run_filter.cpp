@@ -540,12 +540,18 @@ RunOutput filter_surface(const FilterSpec& spec, const ParameterValues& given, c
                                     " high, " + format_number(100 * pattern.unexplained) + " % of it unexplained";
             const std::string refused =
                 pattern.side == 0 ? "the selected bump stands neither above nor below the surface around it"
-                : pattern.unexplained <= bump_max_unexplained
-                    ? "the selected bump is no bump (" + fit + ": lower than " + format_number(bump_min_height) +
-                          " of its radius)"
-                    : "the selected bump is not one of a pattern of bumps on a smoother surface (" + fit +
+                : pattern.unexplained > bump_max_unexplained
+                    ? "the selected bump is not one of a pattern of bumps on a smoother surface (" + fit +
                           ", more than " + format_number(100 * bump_max_unexplained) +
-                          " %): the surface's own detail at this size dominates";
+                          " %): the surface's own detail at this size dominates"
+                : pattern.unexplained_everywhere > bump_max_unexplained
+                    ? "the pattern that explains the selected bump (" + fit + ") does not explain the rest of the"
+                      " surface: its " + std::to_string(pattern.bumps + pattern.opposite) + " elements leave " +
+                          format_number(100 * pattern.unexplained_everywhere) + " % of what the lowpass removed there"
+                          " unexplained, more than " + format_number(100 * bump_max_unexplained) +
+                          " %: elsewhere the surface's own detail at this size dominates"
+                    : "the selected bump is no bump (" + fit + ": lower than " + format_number(bump_min_height) +
+                          " of its radius)";
             const std::string detail = "the lowpass removed detail of " + format_number(bump.removed_detail) +
                                        " RMS across the selection (the threshold: " + format_number(bump_min_height) +
                                        " of its radius, " + format_number(bump_min_height * out.feature->radius) + ")";

@@ -380,3 +380,53 @@ TEST(BumpPattern, AFlatLowpassForAWideSelectionIsCutForTheSelectedBumpsOwnWidth)
     }
     EXPECT_GE(narrower, 1) << "no pattern took the narrower cut: the test checks nothing";
 }
+
+TEST(BumpPattern, APatternThatExplainsTheSelectionButNotTheRestOfTheSurfaceIsNotSubtracted) {
+    // Gaussian bumps on the upper half of a sphere, one at the pole selected; the lower half
+    // carries no bumps but per-vertex noise as high as half a bump, the surface's own detail.
+    // Around the selection the pattern explains what the lowpass removed; across the surface
+    // it cannot, and subtracting it would rest on the upper half alone. The flat lowpass, the
+    // documented fallback, is returned instead, and the log says why.
+    const double rho = 0.08;
+    Mesh truth = icosphere(6, 1.0);
+    std::mt19937 random(5);
+    std::normal_distribution<double> gauss;
+    std::vector<Eigen::RowVector3d> centres{Eigen::RowVector3d(0, 0, 1)};
+    while (centres.size() < 40) {
+        const Eigen::RowVector3d c = Eigen::RowVector3d(gauss(random), gauss(random), std::abs(gauss(random))).normalized();
+        if (c[2] > 0.3 &&
+            std::all_of(centres.begin(), centres.end(), [&](const auto& o) { return (o - c).norm() >= 1.6 * rho; }))
+            centres.push_back(c);
+    }
+    Points bumpy = truth.points;
+    for (Eigen::Index v = 0; v < bumpy.rows(); ++v) {
+        const Eigen::RowVector3d n = truth.points.row(v);
+        double h = n[2] < 0 ? 0.12 * rho * gauss(random) : 0.0;
+        for (const auto& c : centres) h += 0.24 * rho * std::exp(-(n - c).squaredNorm() / (rho * rho));
+        bumpy.row(v) = n * (1 + h);
+    }
+    std::vector<int> selected;
+    for (Eigen::Index f = 0; f < truth.triangles.rows(); ++f) {
+        bool inside = true;
+        for (int k = 0; k < 3; ++k) inside = inside && (truth.points.row(truth.triangles(f, k)) - centres[0]).norm() < rho;
+        if (inside) selected.push_back(static_cast<int>(f));
+    }
+    const FilterSpec& spec = *find_filter("denoise");
+    const ParameterValues values = default_values(spec, true);
+    const RunOutput out = run_filter(spec, values, {bumpy, truth.triangles, selected, {}});
+    std::string log;
+    for (const auto& line : out.log) log += line + "\n";
+    ASSERT_TRUE(out.feature);
+    BumpPatternReport pattern;
+    remove_bump_pattern(bumpy, apply_filter(bumpy, truth.triangles, out.transfer), truth.triangles, selected,
+                        out.feature->radius, out.transfer, FilterOptions{}, &pattern);
+    EXPECT_LE(pattern.unexplained, bump_max_unexplained) << log;  // the selection alone is explained
+    EXPECT_GT(pattern.unexplained_everywhere, bump_max_unexplained) << log;
+    EXPECT_FALSE(pattern.removed);
+    EXPECT_TRUE(logged(out, "does not explain the rest of the surface")) << log;
+    FilterOptions options = filter_options(spec, values);
+    options.op = out.op;
+    const Points flat = keep_normal_motion(bumpy, apply_filter(bumpy, truth.triangles, out.transfer, options), truth.triangles);
+    EXPECT_EQ(out.points, to_base_level(bumpy, flat, truth.triangles)) << log;
+    EXPECT_LT(rms_distance(out.points, truth.points), rms_distance(bumpy, truth.points)) << log;
+}
