@@ -535,7 +535,9 @@ RunOutput filter_surface(const FilterSpec& spec, const ParameterValues& given, c
                                                                    input.selected_faces, out.feature->radius,
                                                                    out.transfer, options, lowpass_for);
             const BumpPatternReport& pattern = bump.pattern;
-            const std::string fit = "Gaussian profile of width " + format_number(pattern.width) + " (the selection's radius " +
+            const std::string fit = (pattern.learned_profile ? "profile learned from the selected bump and its neighbours, from a Gaussian of width "
+                                                             : "Gaussian profile of width ") +
+                                    format_number(pattern.width) + " (the selection's radius " +
                                     format_number(out.feature->radius) + "), selected bump " + format_number(pattern.selected_height) +
                                     " high, " + format_number(100 * pattern.unexplained) + " % of it unexplained";
             const std::string refused =
@@ -564,7 +566,9 @@ RunOutput filter_surface(const FilterSpec& spec, const ParameterValues& given, c
                                                           format_number(100 * pattern.unexplained_one_sign) +
                                                           " % unexplained without them)"
                                                     : std::string()) + ", " + fit +
-                                  "; volume removed " + format_number(pattern.removed_volume));
+                                  "; each element at " + format_number(element_sizes[0]) + " to " +
+                                  format_number(element_sizes[std::size(element_sizes) - 1]) +
+                                  " times its size; volume removed " + format_number(pattern.removed_volume));
                 break;
             case SelectedBumpOutcome::FlatLowpass: {
                 const std::string cut = bump.flat_radius < out.feature->radius

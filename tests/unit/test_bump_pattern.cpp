@@ -430,3 +430,106 @@ TEST(BumpPattern, APatternThatExplainsTheSelectionButNotTheRestOfTheSurfaceIsNot
     EXPECT_EQ(out.points, to_base_level(bumpy, flat, truth.triangles)) << log;
     EXPECT_LT(rms_distance(out.points, truth.points), rms_distance(bumpy, truth.points)) << log;
 }
+
+TEST(BumpPattern, ElementsOfMixedSizesAreRemovedToo) {
+    // 150 Gaussian bumps exp(-(d / rho_i)^2) 0.24 rho_i high, their radii rho_i spread +-30 %
+    // about 0.07. One width leaves a ring or a cap of every bump it misses; each element is
+    // free to take the profile at a few sizes. Checked against the bare sphere (at one width
+    // only: RMS 0.25 of the input's, volume 0.18 % off; measured now 0.12 and 0.06 %).
+    const double rho = 0.07;
+    const Mesh bare = icosphere(6, 1.0);
+    std::mt19937 random(23);
+    std::normal_distribution<double> gauss;
+    std::uniform_real_distribution<double> size(0.7, 1.3);
+    std::vector<std::pair<Eigen::RowVector3d, double>> bumps;
+    while (bumps.size() < 150) {
+        const Eigen::RowVector3d c = Eigen::RowVector3d(gauss(random), gauss(random), gauss(random)).normalized();
+        const double r = rho * size(random);
+        if (std::all_of(bumps.begin(), bumps.end(), [&](const auto& o) { return (o.first - c).norm() >= 1.6 * std::max(r, o.second); }))
+            bumps.emplace_back(c, r);
+    }
+    Points bumpy = bare.points;
+    for (Eigen::Index v = 0; v < bumpy.rows(); ++v) {
+        const Eigen::RowVector3d n = bare.points.row(v);
+        double h = 0;
+        for (const auto& [c, r] : bumps) h += 0.24 * r * std::exp(-(n - c).squaredNorm() / (r * r));
+        bumpy.row(v) = n * (1 + h);
+    }
+    std::vector<int> selected;
+    for (Eigen::Index f = 0; f < bare.triangles.rows(); ++f) {
+        bool inside = true;
+        for (int k = 0; k < 3; ++k) inside = inside && (bare.points.row(bare.triangles(f, k)) - bumps[0].first).norm() < bumps[0].second;
+        if (inside) selected.push_back(static_cast<int>(f));
+    }
+    const FilterSpec& spec = *find_filter("denoise");
+    const RunOutput out = run_filter(spec, default_values(spec, true), {bumpy, bare.triangles, selected, {}});
+    std::string log;
+    for (const auto& line : out.log) log += line + "\n";
+    EXPECT_TRUE(logged(out, "pattern of bumps removed")) << log;
+    EXPECT_LT(rms_distance(out.points, bare.points), 0.18 * rms_distance(bumpy, bare.points)) << log;
+    EXPECT_LT(std::abs(volume(out.points, bare.triangles) - bare_volume) / bare_volume, 0.001) << log;
+}
+
+TEST(BumpPattern, SharpRimmedDentsGetAProfileLearnedFromTheSelection) {
+    // Spherical-cap dents sqrt(1 - (d / 1.5 rho_i)^2) 0.24 rho_i deep on a torus, radii spread
+    // +-30 % about 0.045, covering a fifth of it; four patterns. A Gaussian profile leaves
+    // each cap's rim; where the fit learns the profile from the selected dent and its
+    // neighbours and the pattern is removed, the result must end within 0.3 of the input's RMS
+    // distance to the bare torus and keep its volume to 0.05 % (with the Gaussian: 0.31-0.32
+    // and 0.15 %; learned, measured 0.24-0.28 and 0.01-0.02 %). Whatever path a pattern takes,
+    // it must end closer to the bare torus than its input.
+    int learned = 0;
+    for (unsigned seed : {1u, 2u, 3u, 4u}) {
+        SCOPED_TRACE("pattern " + std::to_string(seed));
+        const Mesh bare = torus(240, 96, 1.0, 0.4);
+        std::mt19937 random(seed);
+        std::uniform_int_distribution<Eigen::Index> pick(0, bare.points.rows() - 1);
+        std::uniform_real_distribution<double> size(0.7, 1.3);
+        const double rho = 0.045;
+        const auto normal = [](const Eigen::RowVector3d& p) {
+            const Eigen::RowVector3d core = Eigen::RowVector3d(p[0], p[1], 0).normalized();
+            return Eigen::RowVector3d((p - core).normalized());
+        };
+        std::vector<std::pair<Eigen::Index, double>> dents;
+        double covered = 0;
+        const double area = 4 * M_PI * M_PI * 1.0 * 0.4;
+        for (int tries = 0; tries < 100000 && covered < 0.2 * area; ++tries) {
+            const Eigen::Index i = pick(random);
+            const double r = rho * size(random);
+            if (std::all_of(dents.begin(), dents.end(), [&](const auto& o) {
+                    return (bare.points.row(o.first) - bare.points.row(i)).norm() >= 1.2 * std::max(r, o.second);
+                })) {
+                dents.emplace_back(i, r);
+                covered += M_PI * 2.25 * r * r;
+            }
+        }
+        Points dented = bare.points;
+        for (Eigen::Index v = 0; v < dented.rows(); ++v) {
+            double depth = 0;
+            for (const auto& [i, r] : dents) {
+                const double d = (bare.points.row(v) - bare.points.row(i)).norm();
+                if (d < 1.5 * r) depth += 0.24 * r * std::sqrt(1 - d * d / (2.25 * r * r));
+            }
+            dented.row(v) -= depth * normal(bare.points.row(v));
+        }
+        std::vector<int> selected;
+        for (Eigen::Index f = 0; f < bare.triangles.rows(); ++f) {
+            bool inside = true;
+            for (int k = 0; k < 3; ++k)
+                inside = inside && (bare.points.row(bare.triangles(f, k)) - bare.points.row(dents[0].first)).norm() < 1.2 * dents[0].second;
+            if (inside) selected.push_back(static_cast<int>(f));
+        }
+        const FilterSpec& spec = *find_filter("denoise");
+        const RunOutput out = run_filter(spec, default_values(spec, true), {dented, bare.triangles, selected, {}});
+        std::string log;
+        for (const auto& line : out.log) log += line + "\n";
+        const double input = rms_distance(dented, bare.points), denoised = rms_distance(out.points, bare.points);
+        EXPECT_LT(denoised, input) << log;
+        if (!logged(out, "pattern of bumps removed") || !logged(out, "profile learned")) continue;
+        ++learned;
+        const double bare_torus = volume(bare.points, bare.triangles);
+        EXPECT_LT(denoised, 0.3 * input) << log;
+        EXPECT_LT(std::abs(volume(out.points, bare.triangles) - bare_torus) / bare_torus, 5e-4) << log;
+    }
+    EXPECT_GE(learned, 1) << "no pattern was removed with a learned profile: the test checks nothing";
+}

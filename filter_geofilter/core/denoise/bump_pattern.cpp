@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <iterator>
 #include <unordered_map>
 
 #include <Eigen/SparseCholesky>
@@ -31,6 +32,10 @@ constexpr double patch_margin_in_radii = 6.0;
 constexpr double search_step = 1.1;
 // How many peaks (the selected bump's and its nearest) judge the width.
 constexpr size_t judged_peaks = 7;
+// The learned profile's knots, in bump radii, and its rounds of fitting.
+constexpr double learned_knot_in_radii = 0.5;
+constexpr int learned_rounds = 3;
+constexpr Eigen::Index unit_size = 1;  // element_sizes[unit_size] == 1
 
 // Vertices within a distance of a point, found through a uniform grid.
 class PointGrid {
@@ -66,13 +71,14 @@ private:
     std::unordered_map<std::int64_t, std::vector<int>> cells_;
 };
 
-// Gaussian profiles of width w at the centres, as columns of a vertices x centres matrix.
-SparseMatrix profiles(const PointGrid& grid, const Points& base, const std::vector<int>& centres, double width,
-                      Eigen::Index vertices) {
+// A radial profile (of the distance, zero beyond `support`) at the centres, as columns of a
+// vertices x centres matrix.
+SparseMatrix profiles(const PointGrid& grid, const Points& base, const std::vector<int>& centres, double support,
+                      const std::function<double(double)>& profile, Eigen::Index vertices) {
     std::vector<Eigen::Triplet<double>> entries;
     for (size_t i = 0; i < centres.size(); ++i)
-        grid.within(base.row(centres[i]), support_in_widths * width, [&](int v, double d2) {
-            entries.emplace_back(v, static_cast<int>(i), std::exp(-d2 / (width * width)));
+        grid.within(base.row(centres[i]), support, [&](int v, double d2) {
+            entries.emplace_back(v, static_cast<int>(i), profile(std::sqrt(d2)));
         });
     SparseMatrix phi(vertices, static_cast<Eigen::Index>(centres.size()));
     phi.setFromTriplets(entries.begin(), entries.end());
@@ -307,71 +313,90 @@ Points remove_bump_pattern(const Points& input, const Points& lowpassed, const T
     std::vector<int> near_peak;
     grid.within(peak, reach + patch_margin_in_radii * bump_radius, [&](int v, double) { near_peak.push_back(v); });
     const Submesh patch = induced_submesh(input, triangles, near_peak);
-    Eigen::MatrixXd single = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(patch.vertex.size()), count);
-    for (size_t i = 0; i < patch.vertex.size(); ++i) {
-        const double d2 = (lowpassed.row(patch.vertex[i]) - peak).squaredNorm();
-        if (d2 <= reach * reach)
-            for (Eigen::Index k = 0; k < count; ++k) single(static_cast<Eigen::Index>(i), k) = std::exp(-d2 / (widths[k] * widths[k]));
-    }
-    const Eigen::MatrixXd single_removed = single - filter_field(patch.points, patch.triangles, g, single, options);
+    const double knot = learned_knot_in_radii * bump_radius;
+    const Eigen::Index hats = static_cast<Eigen::Index>(std::floor(support_in_widths * widths.back() / knot));
+    const auto hat = [&](Eigen::Index k, double distance) { return std::max(0.0, 1 - std::abs(distance / knot - static_cast<double>(k))); };
+    const Eigen::Index sizes = static_cast<Eigen::Index>(std::size(element_sizes));
     const double bin = 0.5 * mean_edge;
     const int bins = static_cast<int>(std::ceil(reach / bin)) + 1;
-    Eigen::MatrixXd table = Eigen::MatrixXd::Zero(bins, count);
-    Eigen::VectorXd in_bin = Eigen::VectorXd::Zero(bins);
-    for (size_t i = 0; i < patch.vertex.size(); ++i) {
-        const int v = patch.vertex[i];
-        const double d2 = (lowpassed.row(v) - peak).squaredNorm();
-        if (d2 > reach * reach) continue;
-        const int b = static_cast<int>(std::sqrt(d2) / bin);
-        table.row(b) += area[v] * single_removed.row(static_cast<Eigen::Index>(i));
-        in_bin[b] += area[v];
-    }
-    for (int b = 0; b < bins; ++b) {
-        if (in_bin[b] > 0) {
-            table.row(b) /= in_bin[b];
-        } else if (b > 0) {
-            table.row(b) = table.row(b - 1);  // an empty ring (coarse sampling near the peak)
+    // What the lowpass removes of radial fields about the selected peak (field(k, distance),
+    // k < columns), tabulated by distance, in bins of half an edge.
+    const auto removed_tables = [&](Eigen::Index columns, const std::function<double(Eigen::Index, double)>& field) {
+        Eigen::MatrixXd single = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(patch.vertex.size()), columns);
+        for (size_t i = 0; i < patch.vertex.size(); ++i) {
+            const double d2 = (lowpassed.row(patch.vertex[i]) - peak).squaredNorm();
+            if (d2 <= reach * reach)
+                for (Eigen::Index k = 0; k < columns; ++k) single(static_cast<Eigen::Index>(i), k) = field(k, std::sqrt(d2));
         }
-    }
+        const Eigen::MatrixXd single_removed = single - filter_field(patch.points, patch.triangles, g, single, options);
+        Eigen::MatrixXd table = Eigen::MatrixXd::Zero(bins, columns);
+        Eigen::VectorXd in_bin = Eigen::VectorXd::Zero(bins);
+        for (size_t i = 0; i < patch.vertex.size(); ++i) {
+            const int v = patch.vertex[i];
+            const double d2 = (lowpassed.row(v) - peak).squaredNorm();
+            if (d2 > reach * reach) continue;
+            const int b = static_cast<int>(std::sqrt(d2) / bin);
+            table.row(b) += area[v] * single_removed.row(static_cast<Eigen::Index>(i));
+            in_bin[b] += area[v];
+        }
+        for (int b = 0; b < bins; ++b) {
+            if (in_bin[b] > 0) {
+                table.row(b) /= in_bin[b];
+            } else if (b > 0) {
+                table.row(b) = table.row(b - 1);  // an empty ring (coarse sampling near the peak)
+            }
+        }
+        return table;
+    };
+    const Eigen::MatrixXd table = removed_tables(count + sizes * hats, [&](Eigen::Index k, double distance) {
+        if (k < count) return std::exp(-distance * distance / (widths[k] * widths[k]));
+        const Eigen::Index z = (k - count) / hats;
+        return hat((k - count) % hats, distance / element_sizes[z]);
+    });
 
     // Heights of the peaks `at` of `target` for the removed profile `column` (one value per
     // bin), least squares weighted by `weight`; peaks lower than `least` (or, when `least` is
     // negative, than a share of the selected peak's height) are dropped (they are the surface's
     // own detail) and the rest fitted again. `explained` receives psi * a, offset included.
-    auto fit = [&](std::vector<int>& at, const Eigen::VectorXd& column, const Eigen::VectorXd& weight,
+    const auto tabulated = [&](const Eigen::VectorXd& column, double distance) {
+        const double x = distance / bin - 0.5;  // bin centres
+        if (x <= 0) return column[0];
+        const int b = static_cast<int>(x);
+        if (b + 1 >= bins) return 0.0;
+        const double t = x - b;
+        return (1 - t) * column[b] + t * column[b + 1];
+    };
+    auto fit = [&](std::vector<int>& at, const Eigen::MatrixXd& columns, const Eigen::VectorXd& weight,
                    const Eigen::VectorXd& target, double least, Eigen::VectorXd* explained) {
-        auto profile = [&](double distance) {
-            const double x = distance / bin - 0.5;  // bin centres
-            if (x <= 0) return column[0];
-            const int b = static_cast<int>(x);
-            if (b + 1 >= bins) return 0.0;
-            const double t = x - b;
-            return (1 - t) * column[b] + t * column[b + 1];
-        };
+        const Eigen::Index sizes = columns.cols();
         auto solve = [&](const std::vector<int>& peaks, SparseMatrix& psi) {
             std::vector<Eigen::Triplet<double>> entries;
             for (size_t i = 0; i < peaks.size(); ++i)
                 grid.within(lowpassed.row(peaks[i]), reach, [&](int v, double d2) {
-                    if (weight[v] > 0) entries.emplace_back(v, static_cast<int>(i), profile(std::sqrt(d2)));
+                    if (!(weight[v] > 0)) return;
+                    for (Eigen::Index k = 0; k < sizes; ++k)
+                        entries.emplace_back(v, static_cast<int>(static_cast<Eigen::Index>(i) * sizes + k),
+                                             tabulated(columns.col(k), std::sqrt(d2)));
                 });
             // One constant more, of either sign: each table ends where the lowpass's spread of
             // a bump is faint, but over a whole pattern those faint tails add up to a smooth
             // offset (leaving it out left the densest comparison sphere 0.33 % too full).
             for (Eigen::Index v = 0; v < n; ++v)
-                if (weight[v] > 0) entries.emplace_back(v, static_cast<int>(peaks.size()), 1.0);
-            psi.resize(n, static_cast<Eigen::Index>(peaks.size()) + 1);
+                if (weight[v] > 0) entries.emplace_back(v, static_cast<int>(static_cast<Eigen::Index>(peaks.size()) * sizes), 1.0);
+            psi.resize(n, static_cast<Eigen::Index>(peaks.size()) * sizes + 1);
             psi.setFromTriplets(entries.begin(), entries.end());
             return non_negative_solve(weighted_gram(psi, weight), psi.transpose() * weight.asDiagonal() * target, true);
         };
         SparseMatrix psi;
         const Eigen::VectorXd first = solve(at, psi);
+        const auto total = [&](size_t i) { return first.segment(static_cast<Eigen::Index>(i) * sizes, sizes).sum(); };
         if (least < 0) {
             const auto it = std::find(at.begin(), at.end(), selected_peak);
-            least = it == at.end() ? 0.0 : bump_height_share * first[it - at.begin()];
+            least = it == at.end() ? 0.0 : bump_height_share * total(static_cast<size_t>(it - at.begin()));
         }
         std::vector<int> kept;
         for (size_t i = 0; i < at.size(); ++i)
-            if (first[static_cast<Eigen::Index>(i)] >= least && first[static_cast<Eigen::Index>(i)] > 0) kept.push_back(at[i]);
+            if (total(i) >= least && total(i) > 0) kept.push_back(at[i]);
         const bool same = kept.size() == at.size();
         at.swap(kept);
         const Eigen::VectorXd a = same ? first : solve(at, psi);
@@ -384,18 +409,20 @@ Points remove_bump_pattern(const Points& input, const Points& lowpassed, const T
     // sign what the first fit leaves holds no such peaks.
     struct Fit {
         std::vector<int> at, opposite_at;
-        Eigen::VectorXd a, opposite_a;
+        Eigen::VectorXd a, opposite_a;  // per element, its heights at each size in turn; the offset last
+        Eigen::Index sizes = 1;
         double selected = 0;          // the selected bump's fitted height
         Eigen::VectorXd unexplained;  // height - both fits
         Eigen::VectorXd one_sign;     // height - the selected side's fit
     };
-    auto fit_both = [&](std::vector<int> at, const Eigen::VectorXd& column, const Eigen::VectorXd& weight,
+    auto fit_both = [&](std::vector<int> at, const Eigen::MatrixXd& column, const Eigen::VectorXd& weight,
                         const std::function<bool(int)>& near) {
         Fit r;
+        r.sizes = column.cols();
         Eigen::VectorXd explained;
         r.a = fit(at, column, weight, height, -1, &explained);
         const auto it = std::find(at.begin(), at.end(), selected_peak);
-        r.selected = it == at.end() ? 0.0 : r.a[it - at.begin()];
+        r.selected = it == at.end() ? 0.0 : r.a.segment((it - at.begin()) * r.sizes, r.sizes).sum();
         r.at = std::move(at);
         r.unexplained = height - explained;
         r.one_sign = r.unexplained;
@@ -419,7 +446,7 @@ Points remove_bump_pattern(const Points& input, const Points& lowpassed, const T
     const auto is_local = [&](int v) { return (lowpassed.row(v) - peak).norm() < judged_reach + 2 * reach; };
     Eigen::VectorXd residuals(count), one_sign(count), varying(count), selected_heights(count);
     for (Eigen::Index k = 0; k < count; ++k) {
-        const Fit f = fit_both(local, table.col(k), nearby, is_local);
+        const Fit f = fit_both(local, Eigen::MatrixXd(table.col(k)), nearby, is_local);
         residuals[k] = (judged.array() * f.unexplained.array().square()).sum();
         one_sign[k] = (judged.array() * f.one_sign.array().square()).sum();
         // What the bumps are to explain is what varies about the fitted offset.
@@ -440,15 +467,7 @@ Points remove_bump_pattern(const Points& input, const Points& lowpassed, const T
     const Eigen::VectorXd& chosen = both_signs ? residuals : one_sign;
     const Eigen::Index best = both_signs ? best_both : best_one;
     result.unexplained = share(chosen, best);
-    result.width = widths[best];
-    result.selected_height = selected_heights[best];
-    // No pattern to fit on the whole surface: the selection is not a bump (a smooth patch, a
-    // cap of a sphere: a "bump" of a millionth of its radius, made by the discretisation), or
-    // the surface's own detail dominates.
-    if (!(result.unexplained <= bump_max_unexplained) || !(selected_heights[best] > bump_min_height * bump_radius)) {
-        if (report) *report = result;
-        return out;
-    }
+    double selected_height = selected_heights[best];
     double step = 0;  // from the best grid width, in grid steps
     if (best > 0 && best + 1 < count) {
         const double curvature = chosen[best - 1] - 2 * chosen[best] + chosen[best + 1];
@@ -456,10 +475,109 @@ Points remove_bump_pattern(const Points& input, const Points& lowpassed, const T
     }
     result.width = widths[best] * std::pow(search_step, step);
     const Eigen::Index other = step < 0 ? best - 1 : best + 1;
-    const Eigen::VectorXd column =
-        step == 0 ? Eigen::VectorXd(table.col(best))
-                  : Eigen::VectorXd((1 - std::abs(step)) * table.col(best) + std::abs(step) * table.col(other));
-    const Fit whole = fit_both(centres, column, area, [&](int) { return both_signs; });
+    Eigen::MatrixXd column =
+        step == 0 ? Eigen::MatrixXd(table.col(best))
+                  : Eigen::MatrixXd((1 - std::abs(step)) * table.col(best) + std::abs(step) * table.col(other));
+    std::vector<double> shape_sizes{1.0};
+    Eigen::VectorXd learned_values;  // the learned profile at its knots (empty: the Gaussian)
+    const double width = result.width;
+    std::function<double(double)> shape = [width](double distance) { return std::exp(-distance * distance / (width * width)); };
+    double shape_support = support_in_widths * width;
+
+    // The profile's shape, learned: spherical caps, plateaus and cosine caps are no Gaussians,
+    // and what a Gaussian leaves of them (a rim, a flat top) is left on the surface. The
+    // profile is taken piecewise linear in the distance, its value 1 at the centre and free
+    // at knots every learned_knot_in_radii radii out to the Gaussian's support; with the
+    // heights held, those values are a linear least-squares fit to d around the selected
+    // bump, and with the values held, the heights are fitted again, a few rounds. The learned
+    // shape is kept while it leaves less of the selected bump and its neighbours unexplained.
+    {
+        const auto judged_share = [&](const Fit& f) {
+            const Eigen::VectorXd& left = both_signs ? f.unexplained : f.one_sign;
+            const double offset = f.a.size() ? f.a[f.a.size() - 1] : 0.0;
+            const double varies = (judged.array() * (height.array() - offset).square()).sum();
+            return varies > 0 ? std::sqrt((judged.array() * left.array().square()).sum() / varies) : 1.0;
+        };
+        Fit current = fit_both(local, column, nearby, is_local);
+        double current_share = judged_share(current);
+        const Eigen::Index knots = std::min(hats, static_cast<Eigen::Index>(std::floor(shape_support / knot)) + 1);
+        std::vector<int> row_of(static_cast<size_t>(n), -1), vertex_of;
+        for (Eigen::Index v = 0; v < n; ++v)
+            if (nearby[v] > 0) {
+                row_of[v] = static_cast<int>(vertex_of.size());
+                vertex_of.push_back(static_cast<int>(v));
+            }
+        const Eigen::Index rows = static_cast<Eigen::Index>(vertex_of.size());
+        for (int round = 0; round < learned_rounds && knots >= 2 && current.selected > 0; ++round) {
+            // r(v, k): what the lowpass removes of the elements' knot k at v, by their heights.
+            std::vector<std::pair<int, double>> elements;  // centre, signed height
+            for (size_t i = 0; i < current.at.size(); ++i) elements.emplace_back(current.at[i], current.a[static_cast<Eigen::Index>(i)]);
+            if (both_signs)
+                for (size_t i = 0; i < current.opposite_at.size(); ++i)
+                    elements.emplace_back(current.opposite_at[i], -current.opposite_a[static_cast<Eigen::Index>(i)]);
+            Eigen::MatrixXd r = Eigen::MatrixXd::Zero(rows, knots + 1);
+            r.col(knots).setOnes();  // the offset
+            for (const auto& [c, a] : elements) {
+                if (a == 0) continue;
+                const double h = a;
+                grid.within(lowpassed.row(c), reach, [&](int v, double d2) {
+                    if (row_of[v] < 0) return;
+                    const double distance = std::sqrt(d2);
+                    for (Eigen::Index k = 0; k < knots; ++k) r(row_of[v], k) += h * tabulated(table.col(count + unit_size * hats + k), distance);
+                });
+            }
+            // A bump's profile falls from its centre outwards: the values at the knots are
+            // sums of non-negative steps down, values_k = sum_{j >= k} step_j, and scaled to
+            // 1 at the centre afterwards (the heights are fitted again).
+            Eigen::MatrixXd steps(rows, knots + 1);
+            steps.col(knots) = r.col(knots);
+            Eigen::VectorXd running = Eigen::VectorXd::Zero(rows);
+            for (Eigen::Index j = 0; j < knots; ++j) {
+                running += r.col(j);
+                steps.col(j) = running;
+            }
+            Eigen::VectorXd w(rows), target(rows);
+            for (Eigen::Index i = 0; i < rows; ++i) {
+                w[i] = nearby[vertex_of[i]];
+                target[i] = height[vertex_of[i]];
+            }
+            const Eigen::MatrixXd gram_dense = steps.transpose() * w.asDiagonal() * steps;
+            const Eigen::VectorXd x = non_negative_solve(gram_dense.sparseView(), steps.transpose() * w.asDiagonal() * target, true);
+            Eigen::VectorXd values(knots);
+            double below = 0;
+            for (Eigen::Index k = knots - 1; k >= 0; --k) values[k] = below += x[k];
+            if (!(values[0] > 0) || !values.allFinite()) break;
+            values /= values[0];
+            const Eigen::MatrixXd learned = table.block(0, count + unit_size * hats, bins, knots) * values;
+            Fit f = fit_both(local, learned, nearby, is_local);
+            const double f_share = judged_share(f);
+            if (!(f_share < current_share) || !(f.selected > 0)) break;
+            current = std::move(f);
+            current_share = f_share;
+            column = learned;
+            const double spacing = knot;
+            shape = [values, spacing](double distance) {
+                const double x = distance / spacing;
+                const Eigen::Index k = static_cast<Eigen::Index>(x);
+                if (k + 1 >= values.size()) return k + 1 == values.size() ? values[k] * (k + 1 - x) : 0.0;
+                return values[k] + (x - static_cast<double>(k)) * (values[k + 1] - values[k]);
+            };
+            shape_support = static_cast<double>(knots) * knot;
+            learned_values = values;
+            result.learned_profile = true;
+            result.unexplained = f_share;
+            selected_height = current.selected;
+        }
+    }
+    result.selected_height = selected_height;
+    // No pattern to fit on the whole surface: the selection is not a bump (a smooth patch, a
+    // cap of a sphere: a "bump" of a millionth of its radius, made by the discretisation), or
+    // the surface's own detail dominates.
+    if (!(result.unexplained <= bump_max_unexplained) || !(selected_height > bump_min_height * bump_radius)) {
+        if (report) *report = result;
+        return out;
+    }
+    Fit whole = fit_both(centres, column, area, [&](int) { return both_signs; });
 
     // The width and the sign were judged near the selected bump; the whole pattern must hold
     // up the same way on the whole surface, where it is subtracted: it must explain at least
@@ -483,12 +601,42 @@ Points remove_bump_pattern(const Points& input, const Points& lowpassed, const T
         if (report) *report = result;
         return out;
     }
+    // The elements are fitted again, each free to take the profile at element_sizes in
+    // combination (non-negative heights at each): a pattern's elements differ in size, and one
+    // size leaves rings of what it misses, sharpest on a sharp-rimmed profile. On the tuning
+    // half's removed patterns the RMS distance to the truth went down by 0-50 % (a Gaussian
+    // sphere 1.48e-3 -> 0.74e-3, torus dents 0.97e-3 -> 0.70e-3). Whether there is a pattern
+    // at all was judged at the selected bump's size, before: the freer fit explained even the
+    // plateau bunny's own texture (that scan then ended 5x farther from its truth).
+    {
+        Eigen::MatrixXd sized(bins, sizes);
+        if (learned_values.size()) {
+            for (Eigen::Index z = 0; z < sizes; ++z)
+                sized.col(z) = table.block(0, count + z * hats, bins, learned_values.size()) * learned_values;
+        } else {
+            sized = removed_tables(sizes, [&](Eigen::Index z, double distance) { return shape(distance / element_sizes[z]); });
+        }
+        whole = fit_both(centres, sized, area, [&](int) { return both_signs; });
+        shape_sizes.assign(std::begin(element_sizes), std::end(element_sizes));
+        result.bumps = static_cast<int>(whole.at.size());
+        result.opposite = static_cast<int>(whole.opposite_at.size());
+        result.selected_height = whole.selected;
+    }
 
-    // H, on the bumps' side: the selected side's Gaussians less the opposite side's.
-    Eigen::VectorXd pattern = profiles(grid, lowpassed, whole.at, result.width, n) * whole.a.head(static_cast<Eigen::Index>(whole.at.size()));
-    if (!whole.opposite_at.empty())
-        pattern -= profiles(grid, lowpassed, whole.opposite_at, result.width, n) *
-                   whole.opposite_a.head(static_cast<Eigen::Index>(whole.opposite_at.size()));
+    // H, on the bumps' side: the selected side's elements less the opposite side's.
+    Eigen::VectorXd pattern = Eigen::VectorXd::Zero(n);
+    for (size_t z = 0; z < shape_sizes.size(); ++z) {
+        const double size = shape_sizes[z];
+        const auto sized = [&](double distance) { return shape(distance / size); };
+        const auto heights = [&](const std::vector<int>& at, const Eigen::VectorXd& a) {
+            Eigen::VectorXd h(static_cast<Eigen::Index>(at.size()));
+            for (size_t i = 0; i < at.size(); ++i) h[static_cast<Eigen::Index>(i)] = a[static_cast<Eigen::Index>(i) * whole.sizes + static_cast<Eigen::Index>(z)];
+            return h;
+        };
+        pattern += profiles(grid, lowpassed, whole.at, shape_support * size, sized, n) * heights(whole.at, whole.a);
+        if (!whole.opposite_at.empty())
+            pattern -= profiles(grid, lowpassed, whole.opposite_at, shape_support * size, sized, n) * heights(whole.opposite_at, whole.opposite_a);
+    }
     result.removed = true;
     for (Eigen::Index v = 0; v < n; ++v) {
         if (!used[v]) continue;

@@ -5,13 +5,16 @@
 // bumps crowd, their tails never let the surface show the base between them. What the
 // lowpass removed, d = (input - lowpass) . n, is the pattern minus what the lowpass kept of it:
 // d = H - LP(H). The selection says what one bump looks like, so the pattern is modelled as
-// H = sum_i a_i exp(-|x - x_i|^2 / w^2): centres x_i where d peaks, heights a_i >= 0, one
-// width w. What the lowpass removes of one such bump, psi_w = phi_w - LP(phi_w), is computed
-// by the same lowpass on a patch around the selected bump, and sum_i a_i psi_w(|x - x_i|) (plus one
-// offset) is fitted to d by least squares; w is the width that best explains the selected
-// bump and its nearest peaks. Subtracting H along the normals removes the bumps and their mean
-// height; everything the model does not explain stays as it was, so detail of the surface
-// itself at the bumps' scale is kept (a lowpass would remove it too).
+// H = sum_i a_i phi(|x - x_i|): centres x_i where d peaks, heights a_i >= 0, one profile phi.
+// What the lowpass removes of one such bump, psi = phi - LP(phi), is computed by the same
+// lowpass on a patch around the selected bump, and sum_i a_i psi(|x - x_i|) (plus one offset)
+// is fitted to d by least squares. phi starts as the Gaussian exp(-r^2 / w^2) whose width
+// best explains the selected bump and its nearest peaks; its shape is then learned from them
+// (piecewise linear, falling outwards), since caps, plateaus and cosines are no Gaussians.
+// For the subtraction each element may take phi at a few sizes, as patterns' elements differ.
+// Subtracting H along the normals removes the bumps and their mean height; everything the
+// model does not explain stays as it was, so detail of the surface itself at the bumps' scale
+// is kept (a lowpass would remove it too).
 #pragma once
 
 #include "core/filter/filter.h"
@@ -26,7 +29,8 @@ struct BumpPatternReport {
     int candidates = 0;       // places where the removed detail peaks on the bumps' side
     int bumps = 0;            // of those, bumps of the pattern (height at least a third of the selected one's)
     int opposite = 0;         // elements of the other sign (dents among bumps, bumps among dents), as high
-    double width = 0;         // w of the fitted Gaussian profile
+    double width = 0;         // w of the fitted Gaussian profile (where a learned one started)
+    bool learned_profile = false;  // the profile's shape was learned from the selected bump and its neighbours
     double selected_height = 0;  // a of the selected bump
     double removed_volume = 0;   // the integral of H over the surface
     bool removed = false;     // false: no pattern explains the selected bump, the input was returned
@@ -58,6 +62,11 @@ constexpr double bump_max_unexplained = 0.5;
 // families the one pattern of bumps and dents whose fit was kept went from 0.41 to 0.25 (0.62);
 // single-sign patterns moved to 0.89-1.0, the unit test's cosine caps to 0.93.
 constexpr double bump_opposite_gain = 0.75;
+// The sizes, relative to the fitted profile's, that each element of the subtracted pattern
+// may take in combination (a non-negative height at each): patterns' elements differ in size,
+// and the generalization protocol's spread their radii by +-30 %. Only the 1 judges whether
+// there is a pattern at all.
+constexpr double element_sizes[] = {0.8, 1.0, 1.25};
 // Nor is a selected bump lower than this share of its radius: that is a flat patch.
 constexpr double bump_min_height = 1e-3;
 
