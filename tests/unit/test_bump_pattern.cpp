@@ -381,16 +381,19 @@ TEST(BumpPattern, AFlatLowpassForAWideSelectionIsCutForTheSelectedBumpsOwnWidth)
     EXPECT_GE(narrower, 1) << "no pattern took the narrower cut: the test checks nothing";
 }
 
-TEST(BumpPattern, APatternThatExplainsTheSelectionButNotTheRestOfTheSurfaceIsNotSubtracted) {
-    // Gaussian bumps on the upper half of a sphere, one at the pole selected; the lower half
-    // carries no bumps but per-vertex noise as high as half a bump, the surface's own detail.
-    // Around the selection the pattern explains what the lowpass removed; across the surface
-    // it cannot, and subtracting it would rest on the upper half alone. The flat lowpass, the
-    // documented fallback, is returned instead, and the log says why.
+TEST(BumpPattern, BumpsAndDentsThatExplainTheSelectionButNotTheRestOfTheSurfaceAreNotSubtracted) {
+    // Gaussian bumps and dents on the upper half of a sphere, one bump at the pole selected;
+    // the lower half carries the surface's own texture instead: 1500 mounds and hollows as
+    // high as the bumps and 0.3-0.6 of their width. Around the selection the pattern explains
+    // what the lowpass removed; elements of both signs follow part of the texture too, but
+    // across the surface the fit leaves more than half of it unexplained (with the texture's
+    // heights shrunk with its widths, 0.3-0.6 as high, 49 %: the check is coarse). The flat
+    // lowpass, the documented fallback, is returned instead, and the log says why.
     const double rho = 0.08;
     Mesh truth = icosphere(6, 1.0);
     std::mt19937 random(5);
     std::normal_distribution<double> gauss;
+    std::uniform_real_distribution<double> uniform(0.0, 1.0);
     std::vector<Eigen::RowVector3d> centres{Eigen::RowVector3d(0, 0, 1)};
     while (centres.size() < 40) {
         const Eigen::RowVector3d c = Eigen::RowVector3d(gauss(random), gauss(random), std::abs(gauss(random))).normalized();
@@ -398,17 +401,34 @@ TEST(BumpPattern, APatternThatExplainsTheSelectionButNotTheRestOfTheSurfaceIsNot
             std::all_of(centres.begin(), centres.end(), [&](const auto& o) { return (o - c).norm() >= 1.6 * rho; }))
             centres.push_back(c);
     }
+    struct Element {
+        Eigen::RowVector3d centre;
+        double width, height;
+    };
+    std::vector<Element> texture;
+    while (texture.size() < 1500) {
+        const Eigen::RowVector3d c = Eigen::RowVector3d(gauss(random), gauss(random), -std::abs(gauss(random))).normalized();
+        const double width = rho * (0.3 + 0.3 * uniform(random));
+        texture.push_back({c, width, 0.24 * rho * (uniform(random) < 0.5 ? -1 : 1) * (0.3 + 0.7 * uniform(random))});
+    }
+    for (Eigen::Index v = 0; v < truth.points.rows(); ++v) {
+        const Eigen::RowVector3d n = truth.points.row(v);
+        double h = 0;
+        for (const auto& e : texture) h += e.height * std::exp(-(n - e.centre).squaredNorm() / (e.width * e.width));
+        truth.points.row(v) = n * (1 + (n[2] < 0 ? 1.0 : std::exp(-n[2] * n[2] / 0.01)) * h);
+    }
     Points bumpy = truth.points;
     for (Eigen::Index v = 0; v < bumpy.rows(); ++v) {
-        const Eigen::RowVector3d n = truth.points.row(v);
-        double h = n[2] < 0 ? 0.12 * rho * gauss(random) : 0.0;
-        for (const auto& c : centres) h += 0.24 * rho * std::exp(-(n - c).squaredNorm() / (rho * rho));
-        bumpy.row(v) = n * (1 + h);
+        const Eigen::RowVector3d n = truth.points.row(v).normalized();
+        double h = 0;
+        for (size_t k = 0; k < centres.size(); ++k)
+            h += (k % 2 ? -1 : 1) * 0.24 * rho * std::exp(-(n - centres[k]).squaredNorm() / (rho * rho));
+        bumpy.row(v) += h * n;
     }
     std::vector<int> selected;
     for (Eigen::Index f = 0; f < truth.triangles.rows(); ++f) {
         bool inside = true;
-        for (int k = 0; k < 3; ++k) inside = inside && (truth.points.row(truth.triangles(f, k)) - centres[0]).norm() < rho;
+        for (int k = 0; k < 3; ++k) inside = inside && (truth.points.row(truth.triangles(f, k)).normalized() - centres[0]).norm() < rho;
         if (inside) selected.push_back(static_cast<int>(f));
     }
     const FilterSpec& spec = *find_filter("denoise");
@@ -421,6 +441,7 @@ TEST(BumpPattern, APatternThatExplainsTheSelectionButNotTheRestOfTheSurfaceIsNot
     remove_bump_pattern(bumpy, apply_filter(bumpy, truth.triangles, out.transfer), truth.triangles, selected,
                         out.feature->radius, out.transfer, FilterOptions{}, &pattern);
     EXPECT_LE(pattern.unexplained, bump_max_unexplained) << log;  // the selection alone is explained
+    EXPECT_GT(pattern.opposite, 0) << log;
     EXPECT_GT(pattern.unexplained_everywhere, bump_max_unexplained) << log;
     EXPECT_FALSE(pattern.removed);
     EXPECT_TRUE(logged(out, "does not explain the rest of the surface")) << log;
@@ -428,7 +449,6 @@ TEST(BumpPattern, APatternThatExplainsTheSelectionButNotTheRestOfTheSurfaceIsNot
     options.op = out.op;
     const Points flat = keep_normal_motion(bumpy, apply_filter(bumpy, truth.triangles, out.transfer, options), truth.triangles);
     EXPECT_EQ(out.points, to_base_level(bumpy, flat, truth.triangles)) << log;
-    EXPECT_LT(rms_distance(out.points, truth.points), rms_distance(bumpy, truth.points)) << log;
 }
 
 TEST(BumpPattern, ElementsOfMixedSizesAreRemovedToo) {

@@ -579,27 +579,30 @@ Points remove_bump_pattern(const Points& input, const Points& lowpassed, const T
     }
     Fit whole = fit_both(centres, column, area, [&](int) { return both_signs; });
 
-    // The width and the sign were judged near the selected bump; the whole pattern must hold
-    // up the same way on the whole surface, where it is subtracted: it must explain at least
-    // as large a share of what the lowpass removed there. On a smoothed scan whose own detail
-    // at the bumps' size is a texture of bumps and dents (the bunny of the tuning half's plateau
-    // family) the fit near the selection passed, but across the surface its 219 elements (19
-    // were made) left 58 % unexplained, and subtracting them took the scan 3.7x farther from
-    // its truth than the input. The tuning half's other removed patterns left 31-42 %; one on
-    // an open patch left 65 % and takes the flat lowpass now (RMS 1.09e-3 against 1.01e-3,
-    // mean normal error 1.1 against 1.7 degrees).
+    // The width and the sign were judged near the selected bump. Elements of both signs can
+    // follow any texture at their size, hollows and mounds alike, so such a pattern must hold
+    // up the same way across the whole surface, where it is subtracted: leave at most as large
+    // a share of what the lowpass removed unexplained. On a smoothed scan whose own detail at
+    // the bumps' size is such a texture (the bunny of the tuning half's plateau family) the
+    // fit near the selection passed, but across the surface its 219 elements (19 were made)
+    // left 58 % unexplained, and subtracting them took the scan 3.7x farther from its truth
+    // than the input; the tuning half's other pattern of both signs that was removed left 35 %.
+    // Bumps of one sign cannot follow the hollows, and their share across the surface also
+    // counts what the lowpass took of the base (a sphere's large bumps, under a wide
+    // selection's cut: 66 % on a report-half sphere whose pattern the fit removed well), so
+    // they are not held to it.
     result.bumps = static_cast<int>(whole.at.size());
     result.opposite = static_cast<int>(whole.opposite_at.size());
     result.selected_height = whole.selected;
-    {
+    if (!whole.opposite_at.empty()) {
         const double offset = whole.a[whole.a.size() - 1];
         const double varies = (area.array() * (height.array() - offset).square()).sum();
         const double left = (area.array() * whole.unexplained.array().square()).sum();
         result.unexplained_everywhere = varies > 0 ? std::sqrt(left / varies) : 1.0;
-    }
-    if (!(result.unexplained_everywhere <= bump_max_unexplained)) {
-        if (report) *report = result;
-        return out;
+        if (!(result.unexplained_everywhere <= bump_max_unexplained)) {
+            if (report) *report = result;
+            return out;
+        }
     }
     // The elements are fitted again, each free to take the profile at element_sizes in
     // combination (non-negative heights at each): a pattern's elements differ in size, and one

@@ -38,8 +38,8 @@ struct BumpPatternReport {
     // relative to what varies there about the fitted offset.
     double unexplained = 0;
     double unexplained_one_sign = 0;  // the same with the selected side's elements alone (= unexplained when opposite is 0)
-    // The same share within two radii of every element of the whole pattern: what the
-    // subtraction would rest on (0 when the fit stopped before the whole pattern).
+    // The same share across the whole surface, for a pattern of both signs (0 when not
+    // measured: one sign, or the fit stopped before the whole pattern).
     double unexplained_everywhere = 0;
 };
 
@@ -75,7 +75,7 @@ constexpr double bump_min_height = 1e-3;
 // selected bump. `options` also serve the lowpass of single bumps (fields of unit height). Returns `input` with
 // the modelled pattern subtracted along the lowpassed surface's normals, or `input` itself
 // when the model leaves more than bump_max_unexplained unexplained, around the selected bump
-// or across the whole surface, or the selected bump is lower than bump_min_height of its
+// or (elements of both signs) across the whole surface, or the selected bump is lower than bump_min_height of its
 // radius (report->removed says which). Vertices in no face
 // stay. Throws Error on an empty selection or a radius that is not a positive number.
 Points remove_bump_pattern(const Points& input, const Points& lowpassed, const Triangles& triangles,
