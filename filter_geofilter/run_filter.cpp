@@ -529,7 +529,7 @@ RunOutput filter_surface(const FilterSpec& spec, const ParameterValues& given, c
                 FeatureEllipsoid bump = *out.feature;
                 bump.radius = radius;
                 const DenoiseDesign d = design_denoise_from_bump(bump, shape_of(spec, values), order_of(spec, values), out.op);
-                return apply_filter(input.points, input.triangles, d.g, options, nullptr, input.cache);
+                return LowpassedForBump{apply_filter(input.points, input.triangles, d.g, options, nullptr, input.cache), d.g};
             };
             const SelectedBumpDenoise bump = denoise_selected_bump(input.points, out.points, input.triangles,
                                                                    input.selected_faces, out.feature->radius,
@@ -568,7 +568,11 @@ RunOutput filter_surface(const FilterSpec& spec, const ParameterValues& given, c
                                                     : std::string()) + ", " + fit +
                                   "; each element at " + format_number(element_sizes[0]) + " to " +
                                   format_number(element_sizes[std::size(element_sizes) - 1]) +
-                                  " times its size; volume removed " + format_number(pattern.removed_volume));
+                                  " times its size; volume removed " + format_number(pattern.removed_volume) +
+                                  (bump.pattern_radius < out.feature->radius
+                                       ? " (fitted again under the lowpass cut for the fitted radius " +
+                                             format_number(bump.pattern_radius) + ", narrower than the selection)"
+                                       : std::string()));
                 break;
             case SelectedBumpOutcome::FlatLowpass: {
                 const std::string cut = bump.flat_radius < out.feature->radius

@@ -80,6 +80,7 @@ struct SelectedBumpDenoise {
     double removed_detail = 0;
     double flat_volume_change = 0;  // the flat lowpass's largest relative change of a closed component's volume
     double flat_radius = 0;         // the bump radius the flat lowpass was cut for (0: none was made)
+    double pattern_radius = 0;      // the bump radius the removed pattern was fitted under (the selection's, or the fitted width when narrower)
     double base_offset = 0;         // how far the flat lowpass was moved back to the base (to_base_level)
 };
 
@@ -90,8 +91,12 @@ struct SelectedBumpDenoise {
 bool denoise_bump_holds_boundary(const Triangles& triangles, Eigen::Index vertex_count);
 
 // The Denoise lowpass designed for a bump of `radius` (design_denoise_from_bump with the
-// selection's shape, order and operator), applied to the input.
-using LowpassForBump = std::function<Points(double radius)>;
+// selection's shape, order and operator): its transfer function and the input it lowpassed.
+struct LowpassedForBump {
+    Points points;
+    TransferFunction g;
+};
+using LowpassForBump = std::function<LowpassedForBump(double radius)>;
 
 // Denoise's rule for one selected bump (`bump_faces`, measured radius `bump_radius`):
 // `lowpassed` is the input lowpassed by `g` (design_denoise_from_bump, applied with
@@ -104,7 +109,9 @@ using LowpassForBump = std::function<Points(double radius)>;
 // so it is when the flat lowpass changes a closed component's volume by more than
 // denoise_flat_max_volume_change. The flat lowpass is cut for the smaller of the selection's
 // radius and the width of the profile fitted to the selected bump (made by `lowpass_for`
-// when that is smaller): a user's selection is a footprint, often wider than the bump.
+// when that is smaller): a user's selection is a footprint, often wider than the bump. For
+// the same reason a removed pattern whose profile is narrower than the selection is fitted
+// again under the lowpass cut for that width.
 SelectedBumpDenoise denoise_selected_bump(const Points& input, const Points& lowpassed, const Triangles& triangles,
                                           const std::vector<int>& bump_faces, double bump_radius,
                                           const TransferFunction& g, const FilterOptions& options,
