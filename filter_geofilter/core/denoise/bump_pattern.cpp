@@ -32,10 +32,14 @@ constexpr double patch_margin_in_radii = 6.0;
 constexpr double search_step = 1.1;
 // How many peaks (the selected bump's and its nearest) judge the width.
 constexpr size_t judged_peaks = 7;
-// The learned profile's knots, in bump radii, and its rounds of fitting.
+// The learned profile's knots, in bump radii: a cap's rim falls between two of them, and
+// finer knots gave the seven judged bumps more unknowns to fit their neighbours' tails with
+// (a unit test's caps at a quarter radius: 0.0032 against 0.0027 RMS). And its rounds of
+// fitting (the third rarely changes the share by a percent).
 constexpr double learned_knot_in_radii = 0.5;
 constexpr int learned_rounds = 3;
-constexpr Eigen::Index unit_size = 1;  // element_sizes[unit_size] == 1
+constexpr Eigen::Index unit_size = 1;
+static_assert(element_sizes[unit_size] == 1.0);
 
 // Vertices within a distance of a point, found through a uniform grid.
 class PointGrid {
