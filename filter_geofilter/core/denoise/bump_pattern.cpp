@@ -38,8 +38,6 @@ constexpr size_t judged_peaks = 7;
 // fitting (the third rarely changes the share by a percent).
 constexpr double learned_knot_in_radii = 0.5;
 constexpr int learned_rounds = 3;
-constexpr Eigen::Index unit_size = 1;
-static_assert(element_sizes[unit_size] == 1.0);
 
 // Vertices within a distance of a point, found through a uniform grid.
 class PointGrid {
@@ -318,7 +316,8 @@ Points remove_bump_pattern(const Points& input, const Points& lowpassed, const T
     grid.within(peak, reach + patch_margin_in_radii * bump_radius, [&](int v, double) { near_peak.push_back(v); });
     const Submesh patch = induced_submesh(input, triangles, near_peak);
     const double knot = learned_knot_in_radii * bump_radius;
-    const Eigen::Index hats = static_cast<Eigen::Index>(std::floor(support_in_widths * widths.back() / knot));
+    // (no knot past the reach of the tables)
+    const Eigen::Index most_knots = static_cast<Eigen::Index>(std::floor(support_in_widths * widths.back() / knot));
     const auto hat = [&](Eigen::Index k, double distance) { return std::max(0.0, 1 - std::abs(distance / knot - static_cast<double>(k))); };
     const Eigen::Index sizes = static_cast<Eigen::Index>(std::size(element_sizes));
     const double bin = 0.5 * mean_edge;
@@ -352,10 +351,8 @@ Points remove_bump_pattern(const Points& input, const Points& lowpassed, const T
         }
         return table;
     };
-    const Eigen::MatrixXd table = removed_tables(count + sizes * hats, [&](Eigen::Index k, double distance) {
-        if (k < count) return std::exp(-distance * distance / (widths[k] * widths[k]));
-        const Eigen::Index z = (k - count) / hats;
-        return hat((k - count) % hats, distance / element_sizes[z]);
+    const Eigen::MatrixXd table = removed_tables(count, [&](Eigen::Index k, double distance) {
+        return std::exp(-distance * distance / (widths[k] * widths[k]));
     });
 
     // Heights of the peaks `at` of `target` for the removed profile `column` (one value per
@@ -369,7 +366,6 @@ Points remove_bump_pattern(const Points& input, const Points& lowpassed, const T
     // 427 elements of both signs up to far higher were subtracted, and the scan ended 4x
     // farther from its truth than the input (with the bound 1.12x: 7 elements). The search
     // near the selection is not bounded: there the heights are still being found.
-    bool like_the_selected = false;
     const auto tabulated = [&](const Eigen::VectorXd& column, double distance) {
         const double x = distance / bin - 0.5;  // bin centres
         if (x <= 0) return column[0];
@@ -379,7 +375,7 @@ Points remove_bump_pattern(const Points& input, const Points& lowpassed, const T
         return (1 - t) * column[b] + t * column[b + 1];
     };
     auto fit = [&](std::vector<int>& at, const Eigen::MatrixXd& columns, const Eigen::VectorXd& weight,
-                   const Eigen::VectorXd& target, double least, Eigen::VectorXd* explained) {
+                   const Eigen::VectorXd& target, double least, bool like_the_selected, Eigen::VectorXd* explained) {
         const Eigen::Index sizes = columns.cols();
         auto solve = [&](const std::vector<int>& peaks, SparseMatrix& psi) {
             std::vector<Eigen::Triplet<double>> entries;
@@ -429,11 +425,11 @@ Points remove_bump_pattern(const Points& input, const Points& lowpassed, const T
         Eigen::VectorXd one_sign;     // height - the selected side's fit
     };
     auto fit_both = [&](std::vector<int> at, const Eigen::MatrixXd& column, const Eigen::VectorXd& weight,
-                        const std::function<bool(int)>& near) {
+                        const std::function<bool(int)>& near, bool like_the_selected) {
         Fit r;
         r.sizes = column.cols();
         Eigen::VectorXd explained;
-        r.a = fit(at, column, weight, height, -1, &explained);
+        r.a = fit(at, column, weight, height, -1, like_the_selected, &explained);
         const auto it = std::find(at.begin(), at.end(), selected_peak);
         r.selected = it == at.end() ? 0.0 : r.a.segment((it - at.begin()) * r.sizes, r.sizes).sum();
         r.at = std::move(at);
@@ -445,7 +441,7 @@ Points remove_bump_pattern(const Points& input, const Points& lowpassed, const T
             for (int v : peaks_of(below, -1))
                 if (near(v)) opposite.push_back(v);
             if (!opposite.empty()) {
-                r.opposite_a = fit(opposite, column, weight, below, bump_height_share * r.selected, &explained);
+                r.opposite_a = fit(opposite, column, weight, below, bump_height_share * r.selected, like_the_selected, &explained);
                 r.opposite_at = std::move(opposite);
                 if (!r.opposite_at.empty()) r.unexplained += explained;
             }
@@ -459,7 +455,7 @@ Points remove_bump_pattern(const Points& input, const Points& lowpassed, const T
     const auto is_local = [&](int v) { return (lowpassed.row(v) - peak).norm() < judged_reach + 2 * reach; };
     Eigen::VectorXd residuals(count), one_sign(count), varying(count), selected_heights(count);
     for (Eigen::Index k = 0; k < count; ++k) {
-        const Fit f = fit_both(local, Eigen::MatrixXd(table.col(k)), nearby, is_local);
+        const Fit f = fit_both(local, Eigen::MatrixXd(table.col(k)), nearby, is_local, false);
         residuals[k] = (judged.array() * f.unexplained.array().square()).sum();
         one_sign[k] = (judged.array() * f.one_sign.array().square()).sum();
         // What the bumps are to explain is what varies about the fitted offset.
@@ -491,8 +487,6 @@ Points remove_bump_pattern(const Points& input, const Points& lowpassed, const T
     Eigen::MatrixXd column =
         step == 0 ? Eigen::MatrixXd(table.col(best))
                   : Eigen::MatrixXd((1 - std::abs(step)) * table.col(best) + std::abs(step) * table.col(other));
-    std::vector<double> shape_sizes{1.0};
-    Eigen::VectorXd learned_values;  // the learned profile at its knots (empty: the Gaussian)
     const double width = result.width;
     std::function<double(double)> shape = [width](double distance) { return std::exp(-distance * distance / (width * width)); };
     double shape_support = support_in_widths * width;
@@ -511,9 +505,9 @@ Points remove_bump_pattern(const Points& input, const Points& lowpassed, const T
             const double varies = (judged.array() * (height.array() - offset).square()).sum();
             return varies > 0 ? std::sqrt((judged.array() * left.array().square()).sum() / varies) : 1.0;
         };
-        Fit current = fit_both(local, column, nearby, is_local);
+        Fit current = fit_both(local, column, nearby, is_local, false);
         double current_share = judged_share(current);
-        const Eigen::Index knots = std::min(hats, static_cast<Eigen::Index>(std::floor(shape_support / knot)) + 1);
+        const Eigen::Index knots = std::min(most_knots, static_cast<Eigen::Index>(std::floor(shape_support / knot)) + 1);
         std::vector<int> row_of(static_cast<size_t>(n), -1), vertex_of;
         for (Eigen::Index v = 0; v < n; ++v)
             if (nearby[v] > 0) {
@@ -526,6 +520,10 @@ Points remove_bump_pattern(const Points& input, const Points& lowpassed, const T
         // held-out sphere stands on for the pattern (50x its volume removed, 9x the input's RMS
         // distance to the truth; the Gaussian alone, 1.04x).
         const bool inside_range = best > 0 && best + 1 < count;
+        // What the lowpass removes of each knot's hat, made only when a profile is learned.
+        Eigen::MatrixXd hat_table;
+        if (inside_range && knots >= 2 && current.selected > 0)
+            hat_table = removed_tables(knots, [&](Eigen::Index k, double distance) { return hat(k, distance); });
         for (int round = 0; inside_range && round < learned_rounds && knots >= 2 && current.selected > 0; ++round) {
             // r(v, k): what the lowpass removes of the elements' knot k at v, by their heights.
             std::vector<std::pair<int, double>> elements;  // centre, signed height
@@ -541,7 +539,7 @@ Points remove_bump_pattern(const Points& input, const Points& lowpassed, const T
                 grid.within(lowpassed.row(c), reach, [&](int v, double d2) {
                     if (row_of[v] < 0) return;
                     const double distance = std::sqrt(d2);
-                    for (Eigen::Index k = 0; k < knots; ++k) r(row_of[v], k) += h * tabulated(table.col(count + unit_size * hats + k), distance);
+                    for (Eigen::Index k = 0; k < knots; ++k) r(row_of[v], k) += h * tabulated(hat_table.col(k), distance);
                 });
             }
             // A bump's profile falls from its centre outwards: the values at the knots are
@@ -566,8 +564,8 @@ Points remove_bump_pattern(const Points& input, const Points& lowpassed, const T
             for (Eigen::Index k = knots - 1; k >= 0; --k) values[k] = below += x[k];
             if (!(values[0] > 0) || !values.allFinite()) break;
             values /= values[0];
-            const Eigen::MatrixXd learned = table.block(0, count + unit_size * hats, bins, knots) * values;
-            Fit f = fit_both(local, learned, nearby, is_local);
+            const Eigen::MatrixXd learned = hat_table * values;
+            Fit f = fit_both(local, learned, nearby, is_local, false);
             const double f_share = judged_share(f);
             if (!(f_share < current_share) || !(f.selected > 0)) break;
             current = std::move(f);
@@ -581,7 +579,6 @@ Points remove_bump_pattern(const Points& input, const Points& lowpassed, const T
                 return values[k] + (x - static_cast<double>(k)) * (values[k + 1] - values[k]);
             };
             shape_support = static_cast<double>(knots) * knot;
-            learned_values = values;
             result.learned_profile = true;
             result.unexplained = f_share;
             selected_height = current.selected;
@@ -595,8 +592,7 @@ Points remove_bump_pattern(const Points& input, const Points& lowpassed, const T
         if (report) *report = result;
         return out;
     }
-    like_the_selected = true;
-    Fit whole = fit_both(centres, column, area, [&](int) { return both_signs; });
+    Fit whole = fit_both(centres, column, area, [&](int) { return both_signs; }, true);
 
     // The width and the sign were judged near the selected bump. Elements of both signs can
     // follow any texture at their size, hollows and mounds alike, so such a pattern must hold
@@ -631,15 +627,8 @@ Points remove_bump_pattern(const Points& input, const Points& lowpassed, const T
     // at all was judged at the selected bump's size, before: the freer fit explained even the
     // plateau bunny's own texture (that scan then ended 5x farther from its truth).
     {
-        Eigen::MatrixXd sized(bins, sizes);
-        if (learned_values.size()) {
-            for (Eigen::Index z = 0; z < sizes; ++z)
-                sized.col(z) = table.block(0, count + z * hats, bins, learned_values.size()) * learned_values;
-        } else {
-            sized = removed_tables(sizes, [&](Eigen::Index z, double distance) { return shape(distance / element_sizes[z]); });
-        }
-        whole = fit_both(centres, sized, area, [&](int) { return both_signs; });
-        shape_sizes.assign(std::begin(element_sizes), std::end(element_sizes));
+        const Eigen::MatrixXd sized = removed_tables(sizes, [&](Eigen::Index z, double distance) { return shape(distance / element_sizes[z]); });
+        whole = fit_both(centres, sized, area, [&](int) { return both_signs; }, true);
         result.bumps = static_cast<int>(whole.at.size());
         result.opposite = static_cast<int>(whole.opposite_at.size());
         result.selected_height = whole.selected;
@@ -647,12 +636,12 @@ Points remove_bump_pattern(const Points& input, const Points& lowpassed, const T
 
     // H, on the bumps' side: the selected side's elements less the opposite side's.
     Eigen::VectorXd pattern = Eigen::VectorXd::Zero(n);
-    for (size_t z = 0; z < shape_sizes.size(); ++z) {
-        const double size = shape_sizes[z];
+    for (Eigen::Index z = 0; z < sizes; ++z) {
+        const double size = element_sizes[z];
         const auto sized = [&](double distance) { return shape(distance / size); };
         const auto heights = [&](const std::vector<int>& at, const Eigen::VectorXd& a) {
             Eigen::VectorXd h(static_cast<Eigen::Index>(at.size()));
-            for (size_t i = 0; i < at.size(); ++i) h[static_cast<Eigen::Index>(i)] = a[static_cast<Eigen::Index>(i) * whole.sizes + static_cast<Eigen::Index>(z)];
+            for (size_t i = 0; i < at.size(); ++i) h[static_cast<Eigen::Index>(i)] = a[static_cast<Eigen::Index>(i) * whole.sizes + z];
             return h;
         };
         pattern += profiles(grid, lowpassed, whole.at, shape_support * size, sized, n) * heights(whole.at, whole.a);
