@@ -122,7 +122,7 @@ def box(m):
 
 
 def capped_cylinder(segments, rings, radius, height):
-    """A closed cylinder: its side a grid, each cap a fan of rings around a centre vertex."""
+    """A closed cylinder, its faces turned outwards: its side a grid, each cap a fan of rings around a centre vertex."""
     a = 2 * np.pi * np.arange(segments) / segments
     zs = np.linspace(-height / 2, height / 2, rings + 1)
     v = [np.array([radius * np.cos(x), radius * np.sin(x), z]) for z in zs for x in a]
@@ -141,12 +141,12 @@ def capped_cylinder(segments, rings, radius, height):
             v += [np.array([rr * np.cos(x), rr * np.sin(x), z]) for x in a]
             for j in range(segments):
                 p0, p1, q0, q1 = prev[j], prev[(j + 1) % segments], ring[j], ring[(j + 1) % segments]
-                f += [(p0, q0, p1), (p1, q0, q1)] if top else [(p0, p1, q0), (p1, q1, q0)]
+                f += [(p0, p1, q0), (p1, q1, q0)] if top else [(p0, q0, p1), (p1, q0, q1)]
             prev = ring
         centre = len(v)
         v.append(np.array([0, 0, z]))
         for j in range(segments):
-            f.append((prev[j], centre, prev[(j + 1) % segments]) if top else (prev[j], prev[(j + 1) % segments], centre))
+            f.append((prev[j], prev[(j + 1) % segments], centre) if top else (prev[j], centre, prev[(j + 1) % segments]))
     return np.array(v), np.array(f)
 
 
