@@ -7,6 +7,7 @@
 
 #include "core/denoise/denoise.h"
 #include "core/mesh/mesh_prep.h"
+#include "core/mesh/orientation.h"
 #include "core/mesh/surface_measures.h"
 
 #include <algorithm>
@@ -673,7 +674,26 @@ CloudSurface as_surface_for_filtering(const Points& points, const std::vector<in
 }
 
 RunOutput run_filter(const FilterSpec& spec, const ParameterValues& values, const RunInput& input) {
-    if (!is_point_cloud(input.points, input.triangles)) return filter_surface(spec, values, input, nullptr);
+    if (!is_point_cloud(input.points, input.triangles)) {
+        // Denoise reads the surface's normals (the noise along them, a bump's height, the volume a
+        // closed part encloses); faces wound against their neighbours would cancel them. Only the
+        // positions are written back: the mesh's faces stay as they are.
+        if (spec.kind == FilterKind::Denoise) {
+            const ConsistentOrientation oriented = orient_consistently(input.triangles, input.points.rows());
+            if (oriented.turned > 0) {
+                RunInput on_oriented{input.points, oriented.triangles, input.selected_faces, input.progress,
+                                     input.vertex_quality, input.cache, input.external_solver,
+                                     input.complex_factorization, input.selected_vertices};
+                RunOutput out = filter_surface(spec, values, on_oriented, nullptr);
+                out.log.insert(out.log.begin(),
+                               "faces: " + std::to_string(oriented.turned) + " of " + std::to_string(input.triangles.rows()) +
+                                   " are wound against their neighbours; Denoise took them turned, so that the normals"
+                                   " and enclosed volumes are the surface's (the mesh's faces are left as they are)");
+                return out;
+            }
+        }
+        return filter_surface(spec, values, input, nullptr);
+    }
     if (!input.selected_faces.empty())
         throw Error("the input is a point cloud (points and no faces), yet " + std::to_string(input.selected_faces.size()) +
                     " faces are given as selected: a cloud's selection is its points (selected vertices)");
