@@ -426,14 +426,22 @@ RunOutput filter_surface(const FilterSpec& spec, const ParameterValues& given, c
                           (cloud ? std::string(" (on a point cloud always: where a point sits along the surface is its sampling,"
                                                " which no smoother can tell from noise)")
                                  : " (tangential / normal part of the umbrella offsets where the mesh is most regular: " +
-                                       format_number(sampled->noise.tangential_ratio) + "; 2 and up: in every direction)"));
+                                       format_number(sampled->noise.tangential_ratio) +
+                                       "; 2 and up: not along the normals; then the offsets' principal direction (" +
+                                       format_number(sampled->noise.direction.x(), 3) + ", " +
+                                       format_number(sampled->noise.direction.y(), 3) + ", " +
+                                       format_number(sampled->noise.direction.z(), 3) + ") holds " +
+                                       format_number(100 * sampled->noise.direction_share, 3) + " % of their variance; " +
+                                       format_number(100 * noise_direction_share, 3) + " % and up: along that direction, else in every direction)"));
         const auto scored = std::count_if(sampled->scores.begin(), sampled->scores.end(),
                                           [](const auto& candidate) { return candidate.second.has_value(); });
-        const double sigma = std::sqrt(sampled->variance.along_normals);
-        out.log.push_back("noise along the normals: standard deviation " + format_number(sigma) + " = " +
+        const double sigma = std::sqrt(sampled->variance.mean);
+        const bool one_direction = sampled->noise.model == NoiseModel::AlongDirection;
+        out.log.push_back(std::string(one_direction ? "noise along that direction" : "noise along the normals") +
+                          ": standard deviation " + format_number(sigma) + " = " +
                           format_number(sigma / mean_edge_length(input.points, input.triangles)) +
                           " mean edge lengths on average (from what the umbrella lowpass at frequency 1 removes along"
-                          " them, per vertex over its " + std::to_string(noise_neighbourhood_vertices) + " nearest)");
+                          " it, per vertex over its " + std::to_string(noise_neighbourhood_vertices) + " nearest)");
         if (sampled->impulses > 0)
             out.log.push_back("impulses: " + std::to_string(sampled->impulses) + " vertices stood more than " +
                               format_number(denoise_impulse_sigmas) + " standard deviations of their noise out of the surface,"
@@ -497,6 +505,8 @@ RunOutput filter_surface(const FilterSpec& spec, const ParameterValues& given, c
                               (cloud ? std::string("no normal; a cloud's fans fold nothing, so none is checked for turning")
                                      : "a face turned by more than " + format_number(normal_motion_max_turn_degrees) +
                                            " degrees otherwise, or no normal") + ")");
+        if (sampled->noise.model == NoiseModel::AlongDirection)
+            out.log.push_back("motion along the noise's direction only: each vertex kept the lowpass's motion along it, not across it");
         if (const auto& b = sampled->motion_bound)
             out.log.push_back("motion held within " + format_number(denoise_motion_bound_sigmas) +
                               " standard deviations of the noise (" + format_number(b->bound) + "): " +

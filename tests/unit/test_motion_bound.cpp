@@ -71,7 +71,7 @@ TEST(BoundMotion, DenoiseMovesNoVertexFartherThanThreeDeviationsOfTheNoise) {
     ASSERT_EQ(out.noise.model, NoiseModel::AlongNormals);
     ASSERT_TRUE(out.motion_bound);
     EXPECT_EQ(out.impulses, 0);
-    const double measured = std::sqrt(out.variance.along_normals);
+    const double measured = std::sqrt(out.variance.mean);
     EXPECT_NEAR(measured, sigma, 0.25 * sigma);
     EXPECT_GE(out.motion_bound->vertices_held, 1);
     const double slack = out.volume.largest_offset + 1e-12;

@@ -70,7 +70,7 @@ TEST(RiskEstimate, DegreesOfFreedomOfALinearFilterAreItsTrace) {
             double mean = 0;
             const int probes = 16;
             for (int seed = 1; seed <= probes; ++seed)
-                mean += estimate_risk(m.points, m.triangles, smooth, 1e-4, seed, model, Eigen::VectorXd::Zero(m.points.rows())).degrees_of_freedom /
+                mean += estimate_risk(m.points, m.triangles, smooth, 1e-4, seed, {model}, Eigen::VectorXd::Zero(m.points.rows())).degrees_of_freedom /
                         probes;
             EXPECT_NEAR(mean, trace, 4 * std::sqrt(2 * trace / probes)) << "trace " << trace;
             EXPECT_GT(trace, 100);  // the bound above is then well under the trace itself
@@ -103,8 +103,8 @@ TEST(RiskEstimate, APerturbedRunAlongsideScoresAsTheRunsInTurn) {
     for (NoiseModel model : {NoiseModel::AlongNormals, NoiseModel::Isotropic}) {
         SCOPED_TRACE(noise_model_name(model));
         first_coordinate.clear();
-        const RiskEstimate a = estimate_risk(noisy, m.triangles, in_turn, 0.01 * h, 3, model, variance);
-        const RiskEstimate b = estimate_risk(noisy, m.triangles, input_only, 0.01 * h, 3, model, variance, nullptr, {}, {},
+        const RiskEstimate a = estimate_risk(noisy, m.triangles, in_turn, 0.01 * h, 3, {model}, variance);
+        const RiskEstimate b = estimate_risk(noisy, m.triangles, input_only, 0.01 * h, 3, {model}, variance, nullptr, {}, {},
                                              perturbed_only);
         ASSERT_EQ(first_coordinate.size(), 1u);
         EXPECT_EQ(first_coordinate[0], noisy(0, 0));
@@ -123,19 +123,19 @@ TEST(RiskEstimate, ExtremeSmoothersScoreAsTheFormulaSays) {
     const Mesh m = icosphere(2, 1.0);
     const Smoother identity = [](const Points& y) { return y; };
     const Eigen::VectorXd s2 = Eigen::VectorXd::Constant(m.points.rows(), 0.01);
-    const RiskEstimate along = estimate_risk(m.points, m.triangles, identity, 1e-3, 1, NoiseModel::AlongNormals, s2);
+    const RiskEstimate along = estimate_risk(m.points, m.triangles, identity, 1e-3, 1, {NoiseModel::AlongNormals}, s2);
     EXPECT_NEAR(along.degrees_of_freedom, m.points.rows(), 1e-6 * m.points.rows());
     EXPECT_EQ(along.observations, m.points.rows());
     EXPECT_NEAR(along.risk, 0.01, 1e-9);
     EXPECT_NEAR(along.unchanged, 0.01, 1e-15);
-    const RiskEstimate every_way = estimate_risk(m.points, m.triangles, identity, 1e-3, 1, NoiseModel::Isotropic, s2);
+    const RiskEstimate every_way = estimate_risk(m.points, m.triangles, identity, 1e-3, 1, {NoiseModel::Isotropic}, s2);
     EXPECT_NEAR(every_way.degrees_of_freedom, 3 * m.points.rows(), 1e-6 * m.points.rows());
     EXPECT_EQ(every_way.observations, 3 * m.points.rows());
     EXPECT_NEAR(every_way.risk, 3 * 0.01, 1e-9);
     EXPECT_NEAR(every_way.unchanged, 3 * 0.01, 1e-15);
     const RiskEstimate collapse = estimate_risk(
         m.points, m.triangles, [](const Points& y) { return Points(Points::Zero(y.rows(), 3)); }, 1e-3, 1,
-        NoiseModel::AlongNormals, s2);
+        {NoiseModel::AlongNormals}, s2);
     EXPECT_NEAR(collapse.degrees_of_freedom, 0, 1e-9);
     EXPECT_NEAR(collapse.residual, 1.0, 1e-12);  // unit sphere about the origin
     EXPECT_NEAR(collapse.risk, 1.0 - 0.01, 1e-12);
@@ -143,13 +143,13 @@ TEST(RiskEstimate, ExtremeSmoothersScoreAsTheFormulaSays) {
     // by a collapse to the centroid passes all the noise and removes the whole sphere.
     const Finish to_centroid = [](const Points& y, const Points&) { return Points(Points::Zero(y.rows(), 3)); };
     const RiskEstimate finished =
-        estimate_risk(m.points, m.triangles, identity, 1e-3, 1, NoiseModel::AlongNormals, s2, nullptr, to_centroid);
+        estimate_risk(m.points, m.triangles, identity, 1e-3, 1, {NoiseModel::AlongNormals}, s2, nullptr, to_centroid);
     EXPECT_NEAR(finished.degrees_of_freedom, m.points.rows(), 1e-6 * m.points.rows());
     EXPECT_NEAR(finished.residual, 1.0, 1e-12);
     EXPECT_NEAR(finished.risk, 1.0 + 0.01, 1e-12);
-    EXPECT_THROW(estimate_risk(m.points, m.triangles, identity, 0, 1, NoiseModel::AlongNormals, s2), Error);
-    EXPECT_THROW(estimate_risk(m.points, m.triangles, identity, 1e-3, 1, NoiseModel::AlongNormals, -s2), Error);
-    EXPECT_THROW(estimate_risk(m.points, m.triangles, identity, 1e-3, 1, NoiseModel::AlongNormals, s2.head(3)), Error);
+    EXPECT_THROW(estimate_risk(m.points, m.triangles, identity, 0, 1, {NoiseModel::AlongNormals}, s2), Error);
+    EXPECT_THROW(estimate_risk(m.points, m.triangles, identity, 1e-3, 1, {NoiseModel::AlongNormals}, -s2), Error);
+    EXPECT_THROW(estimate_risk(m.points, m.triangles, identity, 1e-3, 1, {NoiseModel::AlongNormals}, s2.head(3)), Error);
 }
 
 // On a sphere noised along its normals or in every direction, the variance estimated from the
@@ -175,7 +175,7 @@ TEST(RiskEstimate, NoiseVarianceIgnoresASparseFineDetail) {
     const Points noisy = noised_along_normals(detailed, 0.1 * h, 7);
     const double added = ((noisy - detailed.points).cwiseProduct(radial)).rowwise().sum().squaredNorm() / sphere.points.rows();
     const NoiseVariance v = estimate_noise_variance(noisy, sphere.triangles, FilterOptions{});
-    EXPECT_NEAR(v.along_normals / added, 1.0, 0.10);
+    EXPECT_NEAR(v.mean / added, 1.0, 0.10);
     // What the mean would have said: the finest band's squared normal residuals, averaged.
     FilterOptions umbrella;
     umbrella.op = Operator::Umbrella;
@@ -200,7 +200,7 @@ TEST(RiskEstimate, NoiseVarianceAndRiskMatchTheNoiseAndTheTruth) {
                 isotropic ? noised_in_every_direction(m, level * h, 7) : noised_along_normals(m, level * h, 7);
             const double added = ((noisy - m.points).cwiseProduct(radial)).rowwise().sum().squaredNorm() / m.points.rows();
             const NoiseVariance v = estimate_noise_variance(noisy, m.triangles, FilterOptions{});
-            EXPECT_NEAR(v.along_normals / added, 1.0, 0.05);
+            EXPECT_NEAR(v.mean / added, 1.0, 0.05);
             // Half the finest band's noise passes (its cutoff is the middle of the umbrella's range).
             EXPECT_NEAR(v.degrees_of_freedom, 0.5, 0.05);
             for (double cutoff : {0.35, 0.7}) {
@@ -209,11 +209,11 @@ TEST(RiskEstimate, NoiseVarianceAndRiskMatchTheNoiseAndTheTruth) {
                 const Smoother smooth = [&](const Points& y) { return apply_filter(y, m.triangles, g, options); };
                 Points smoothed;
                 const RiskEstimate r = estimate_risk(noisy, m.triangles, smooth, 0.01 * h, 3,
-                                                     isotropic ? NoiseModel::Isotropic : NoiseModel::AlongNormals,
+                                                     {isotropic ? NoiseModel::Isotropic : NoiseModel::AlongNormals},
                                                      v.per_vertex, &smoothed);
                 const double truth = (smoothed - m.points).rowwise().squaredNorm().mean();
                 // Unbiased, with a spread of the noise's variance over ~sqrt(vertices): 1 % here.
-                const double noise = (isotropic ? 3 : 1) * v.along_normals;
+                const double noise = (isotropic ? 3 : 1) * v.mean;
                 EXPECT_NEAR(r.risk, truth, 0.05 * noise) << "risk " << r.risk << ", truth " << truth;
                 EXPECT_LT(truth, 0.5 * noise);  // a real lowpass: the check above is not vacuous
             }
@@ -294,10 +294,10 @@ TEST(Denoise, CandidatesLeftUnscoredScoreNoLowerThanTheChosenOne) {
             o.tolerance = std::min(o.tolerance, 1e-3 * denoise_probe_step * hn / size);
             const Smoother smooth = [&](const Points& y) { return apply_filter(y, clean.triangles, design.g, o); };
             const Finish finish = [&](const Points& y, const Points& f) {
-                return denoise_output(y, f, clean.triangles, {}, out.noise.model, out.variance.per_vertex.cwiseSqrt());
+                return denoise_output(y, f, clean.triangles, {}, out.noise, out.variance.per_vertex.cwiseSqrt());
             };
             const double here = estimate_risk(noisy, clean.triangles, smooth, denoise_probe_step * hn,
-                                              denoise_probe_seed, out.noise.model, out.variance.per_vertex,
+                                              denoise_probe_seed, out.noise, out.variance.per_vertex,
                                               nullptr, finish)
                                     .risk;
             EXPECT_GE(here, chosen);
@@ -365,7 +365,81 @@ TEST(NoiseDirection, TellsTheDirectionOnATorusSampledLongerOneWay) {
     }
 }
 
+// A depth scanner's noise: along one view direction everywhere, growing with depth. It is not
+// along the normals, and where the view grazes the surface little of it shows along them: read
+// as in every direction from its part along the normals, its variance came out a third to a
+// half of the noise's on the generalization protocol's scans.
+namespace {
+Points noised_along_a_view(const Points& clean, const Eigen::Vector3d& view, double nearest, double farthest, unsigned seed,
+                           Eigen::VectorXd* sigma) {
+    const Eigen::VectorXd depth = clean * view;
+    std::mt19937 random(seed);
+    std::normal_distribution<double> gauss;
+    Points noisy = clean;
+    sigma->resize(clean.rows());
+    for (Eigen::Index i = 0; i < noisy.rows(); ++i) {
+        (*sigma)[i] = nearest + (farthest - nearest) * (depth[i] - depth.minCoeff()) / (depth.maxCoeff() - depth.minCoeff());
+        noisy.row(i) += (*sigma)[i] * gauss(random) * view.transpose();
+    }
+    return noisy;
+}
+} // namespace
+
+TEST(NoiseDirection, NoiseAlongOneViewDirectionIsReadAndMeasuredAlongIt) {
+    const Mesh m = torus(160, 64, 1.0, 0.4);
+    const double h = mean_edge_length(m.points, m.triangles);
+    const Eigen::Vector3d view = Eigen::Vector3d(1, 2, 2).normalized();
+    Eigen::VectorXd sigma;
+    const Points noisy = noised_along_a_view(m.points, view, 0.1 * h, 0.5 * h, 17, &sigma);
+    const NoiseDirection read = estimate_noise_direction(noisy, m.triangles);
+    ASSERT_EQ(read.model, NoiseModel::AlongDirection) << read.tangential_ratio << " " << read.direction_share;
+    EXPECT_GT(std::abs(read.direction.dot(view)), 0.99);
+    const double added = sigma.squaredNorm() / static_cast<double>(sigma.size());
+    const NoiseVariance along = estimate_noise_variance(noisy, m.triangles, FilterOptions{}, nullptr, read.direction);
+    EXPECT_NEAR(along.mean / added, 1.0, 0.1);
+    Eigen::Index deep, shallow;
+    const Eigen::VectorXd depth = m.points * view;
+    depth.maxCoeff(&deep);
+    depth.minCoeff(&shallow);
+    EXPECT_GT(along.per_vertex[deep], 9 * along.per_vertex[shallow]);  // 25x in the noise added
+    const NoiseVariance across_the_surface = estimate_noise_variance(noisy, m.triangles, FilterOptions{});
+    EXPECT_LT(across_the_surface.mean / added, 0.6);
+    // Denoise on it: as close to the clean torus as the best of its candidates applied whole
+    // (on this smooth, regular torus the lowpass drifts little along the surface).
+    const FilterSpec& spec = *find_filter("denoise");
+    const RunOutput out = run_filter(spec, default_values(spec, false), {noisy, m.triangles, {}, {}});
+    double best = INFINITY;
+    FilterOptions options;
+    for (const DenoiseDesign& d : denoise_sampling_candidates(h, 4, {})) {
+        options.op = d.op;
+        best = std::min(best, rms_distance(apply_filter(noisy, m.triangles, d.g, options), m.points));
+    }
+    EXPECT_LT(rms_distance(out.points, m.points), 1.05 * best);
+    EXPECT_TRUE(std::any_of(out.log.begin(), out.log.end(), [](const std::string& line) {
+        return line.rfind("noise model: along one direction", 0) == 0;
+    }));
+}
+
 #ifdef GEOFILTER_MESHES
+// On a scan, the lowpass drifts along the surface where its sampling is irregular: with the
+// noise along one view direction, keeping only the lowpass's motion along it ends far closer
+// to the clean bunny than any of the candidates applied whole (measured: 0.68x the best).
+TEST(NoiseDirection, DenoiseRemovesADepthScannersNoiseAlongItsView) {
+    const Mesh clean = reference::read_off(GEOFILTER_MESHES "/bunny00.off");
+    const double h = mean_edge_length(clean.points, clean.triangles);
+    Eigen::VectorXd sigma;
+    const Points noisy = noised_along_a_view(clean.points, Eigen::Vector3d(1, 2, 2).normalized(), 0.1 * h, 0.5 * h, 11, &sigma);
+    const FilterSpec& spec = *find_filter("denoise");
+    const RunOutput out = run_filter(spec, default_values(spec, false), {noisy, clean.triangles, {}, {}});
+    double best = INFINITY;
+    FilterOptions options;
+    for (const DenoiseDesign& d : denoise_sampling_candidates(h, 4, {})) {
+        options.op = d.op;
+        best = std::min(best, rms_distance(apply_filter(noisy, clean.triangles, d.g, options), clean.points));
+    }
+    EXPECT_LT(rms_distance(out.points, clean.points), 0.8 * best);
+}
+
 // On real scans with noise along the normals or in every direction, the lowpass with the
 // lowest estimated risk is within 10 % of the best candidate measured against the clean scan;
 // run_filter returns that candidate and logs the choice and the noise model. At strong noise

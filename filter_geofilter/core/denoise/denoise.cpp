@@ -176,10 +176,17 @@ std::vector<int> search_downhill(int first, int last, const std::function<double
 }
 
 Points denoise_output(const Points& noisy, Points lowpassed, const Triangles& triangles, const DenoiseSurface& surface,
-                      NoiseModel model, const Eigen::VectorXd& noise_sigma, NormalMotionReport* motion, MotionBoundReport* bound,
+                      const NoiseDirection& noise, const Eigen::VectorXd& noise_sigma, NormalMotionReport* motion, MotionBoundReport* bound,
                       VolumeRestoreReport* volume) {
-    if (model == NoiseModel::AlongNormals) {
+    if (noise.model == NoiseModel::AlongNormals) {
         lowpassed = keep_normal_motion(noisy, lowpassed, triangles, surface.point_cloud ? 180 : normal_motion_max_turn_degrees, motion);
+        lowpassed = bound_motion(noisy, lowpassed, denoise_motion_bound_sigmas * noise_sigma, bound);
+    } else if (noise.model == NoiseModel::AlongDirection) {
+        // The noise moved each vertex along the one direction only, so its place across that
+        // direction is right: only the lowpass's motion along it is kept.
+        const Eigen::RowVector3d along = noise.direction.normalized().transpose();
+        for (Eigen::Index i = 0; i < lowpassed.rows(); ++i)
+            lowpassed.row(i) = noisy.row(i) + (lowpassed.row(i) - noisy.row(i)).dot(along) * along;
         lowpassed = bound_motion(noisy, lowpassed, denoise_motion_bound_sigmas * noise_sigma, bound);
     }
     return restore_volume(noisy, lowpassed, triangles, volume);
@@ -234,6 +241,10 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
         best.noise.model = NoiseModel::AlongNormals;
     else
         best.noise = estimate_noise_direction(usable_y, usable.triangles);
+    // Noise along one direction is measured along it: along the normals a vertex whose surface
+    // that direction grazes shows little of it.
+    if (best.noise.model == NoiseModel::AlongDirection)
+        best.variance = estimate_noise_variance(y, triangles, options, &umbrella, best.noise.direction);
     const Eigen::VectorXd sigma = best.variance.per_vertex.cwiseSqrt();
     for (const DenoiseDesign& design : candidates) best.scores.emplace_back(design, std::nullopt);
     best.krylov_steps.assign(candidates.size(), 0);
@@ -303,8 +314,8 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
         const Smoother smooth_perturbed =
             alongside ? Smoother([&](const Points& at) { return filter_run(at, true); }) : Smoother();
         const RiskEstimate score = estimate_risk(
-            scored_points, scored_triangles, smooth, step, denoise_probe_seed, best.noise.model, scored_variance, nullptr,
-            [&](const Points& at, const Points& f) { return denoise_output(at, f, scored_triangles, surface, best.noise.model, scored_sigma); },
+            scored_points, scored_triangles, smooth, step, denoise_probe_seed, best.noise, scored_variance, nullptr,
+            [&](const Points& at, const Points& f) { return denoise_output(at, f, scored_triangles, surface, best.noise, scored_sigma); },
             patches.counted, smooth_perturbed);
         run += 2;
         best.krylov_steps[static_cast<std::size_t>(index)] = std::max(krylov_steps[0], krylov_steps[1]);
@@ -348,13 +359,11 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
             return options.progress(scoring_share + (1 - scoring_share) * fraction,
                                     "Denoise: the chosen lowpass, " + best.design.origin + ": " + stage);
         };
-    if (best.noise.model == NoiseModel::AlongNormals) {
-        best.normal_motion.emplace();
-        best.motion_bound.emplace();
-    }
+    if (best.noise.model == NoiseModel::AlongNormals) best.normal_motion.emplace();
+    if (best.noise.model != NoiseModel::Isotropic) best.motion_bound.emplace();
     best.points = denoise_output(y, apply_filter(y, triangles, best.design.g, o, &best.report,
                                                      best.design.op == Operator::Umbrella ? &umbrella : nullptr), triangles, surface,
-                                 best.noise.model, sigma, best.normal_motion ? &*best.normal_motion : nullptr,
+                                 best.noise, sigma, best.normal_motion ? &*best.normal_motion : nullptr,
                                  best.motion_bound ? &*best.motion_bound : nullptr, &best.volume);
     best.seconds.final_run = stage_done();
     best.report.seconds_total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -186,7 +186,7 @@ constexpr double denoise_motion_bound_sigmas = 3.0;
 // 7,634 of the man cloud's 17,495 points (noise of 0.3 mean edge lengths along the normals:
 // RMS to the clean points 1.46e-3 with the check, 1.31e-3 without; docs/results/clouds.md).
 Points denoise_output(const Points& noisy, Points lowpassed, const Triangles& triangles, const DenoiseSurface& surface,
-                      NoiseModel model, const Eigen::VectorXd& noise_sigma, NormalMotionReport* motion = nullptr, MotionBoundReport* bound = nullptr,
+                      const NoiseDirection& noise, const Eigen::VectorXd& noise_sigma, NormalMotionReport* motion = nullptr, MotionBoundReport* bound = nullptr,
                       VolumeRestoreReport* volume = nullptr);
 
 // On a large mesh the candidates are scored on patches of it, not on all of it: the risk is a

@@ -2,13 +2,20 @@
 #include "core/operators/operators.h"
 #include "core/mesh/surface_measures.h"
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <vector>
 
 namespace geofilter {
 
 const char* noise_model_name(NoiseModel model) {
-    return model == NoiseModel::Isotropic ? "in every direction" : "along the normals";
+    switch (model) {
+    case NoiseModel::Isotropic: return "in every direction";
+    case NoiseModel::AlongDirection: return "along one direction";
+    case NoiseModel::AlongNormals: break;
+    }
+    return "along the normals";
 }
 
 namespace {
@@ -79,6 +86,16 @@ NoiseDirection estimate_noise_direction(const Points& points, const Triangles& t
     if (!(normal_part > 0)) return out;  // no noise along the normals to compare with
     out.tangential_ratio = quantile(across, regular_quantile) / normal_part;
     out.model = out.tangential_ratio >= isotropic_ratio ? NoiseModel::Isotropic : NoiseModel::AlongNormals;
+    Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+    for (Eigen::Index i = 0; i < points.rows(); ++i)
+        if (used[i]) covariance += offset.row(i).transpose() * offset.row(i);
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> principal(covariance);
+    if (principal.info() == Eigen::Success && principal.eigenvalues().sum() > 0) {
+        out.direction = principal.eigenvectors().col(2);
+        out.direction_share = principal.eigenvalues()[2] / principal.eigenvalues().sum();
+        if (out.model == NoiseModel::Isotropic && out.direction_share >= noise_direction_share)
+            out.model = NoiseModel::AlongDirection;
+    }
     return out;
 }
 

@@ -12,15 +12,25 @@ namespace geofilter {
 enum class NoiseModel {
     AlongNormals,
     Isotropic,
+    AlongDirection,  // along one direction everywhere (a scanner's depth error along its view)
 };
 
 const char* noise_model_name(NoiseModel model);
+
+// The principal direction's share of the offsets' variance from which noise not along the
+// normals is taken as along that one direction (estimate_noise_direction): twice the share of
+// the two others together.
+constexpr double noise_direction_share = 2.0 / 3.0;
 
 struct NoiseDirection {
     NoiseModel model = NoiseModel::AlongNormals;
     // In the most regular part of the mesh: the tangential part of the umbrella offsets
     // (mean of the neighbours minus the vertex) over their normal part, both squared.
     double tangential_ratio = 0;
+    // The principal direction of the offsets (unit), and the share of their variance it holds:
+    // 1/3 for noise in every direction, 1 for noise along one.
+    Eigen::Vector3d direction = Eigen::Vector3d::Zero();
+    double direction_share = 0;
 };
 
 // Noise that is independent from vertex to vertex and of variance s^2 along each axis it
@@ -38,6 +48,11 @@ struct NoiseDirection {
 // experiments/generalize_denoise, 0.002-1.12 and 2.33-4.82, its tori sampled 3.6-4.5x longer
 // one way and noised in random directions 2.51-2.59 (with the offsets themselves, 1.93-1.94:
 // read as along the normals).
+// Noise that is not along the normals may still be along one direction: a depth scanner's
+// error lies along its view, whatever the surface's slant. Then the offsets' 3x3 covariance
+// over the mesh has one large eigenvalue; noise in every direction spreads it evenly (each a
+// third), and noise along the normals of a closed surface spreads it over the normals'
+// directions. Along one direction from a principal share of noise_direction_share up.
 NoiseDirection estimate_noise_direction(const Points& points, const Triangles& triangles);
 
 // Unit vertex normals averaged over 3 rings of neighbours: the directions to split the

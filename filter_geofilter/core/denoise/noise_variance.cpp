@@ -42,8 +42,12 @@ double expected_order_square(int m, int k) {
 } // namespace
 
 NoiseVariance estimate_noise_variance(const Points& points, const Triangles& triangles, const FilterOptions& options,
-                                      FilterCache* umbrella_cache) {
-    const Eigen::MatrixXd normal = smoothed_vertex_normals(points, triangles);
+                                      FilterCache* umbrella_cache, const std::optional<Eigen::Vector3d>& along) {
+    // The directions the noise is measured along (named for the usual case).
+    Eigen::MatrixXd normal = smoothed_vertex_normals(points, triangles);
+    if (along)
+        for (Eigen::Index i = 0; i < normal.rows(); ++i)
+            if (normal.row(i).squaredNorm() > 0) normal.row(i) = along->normalized().transpose();
     const double h = mean_edge_length(points, triangles);
     const double size = bounding_box_diagonal(points);
     std::mt19937_64 random(20261203);
@@ -170,7 +174,7 @@ NoiseVariance estimate_noise_variance(const Points& points, const Triangles& tri
         const bool one_of_a_pair = loudest[static_cast<std::size_t>(j)] == i && clear_of_others(j);
         if (alone || one_of_a_pair) out.impulses.push_back(static_cast<int>(i));
     }
-    out.along_normals = sum / vertices;
+    out.mean = sum / vertices;
     return out;
 }
 

@@ -40,6 +40,7 @@
 #include "core/denoise/noise_direction.h"
 #include "core/types.h"
 
+#include <optional>
 #include <vector>
 
 namespace geofilter {
@@ -62,8 +63,8 @@ constexpr double denoise_impulse_sigmas = 6.0;
 constexpr double denoise_impulse_alone = 2.0;
 
 struct NoiseVariance {
-    Eigen::VectorXd per_vertex;  // s_i^2 of the noise along the normals at each vertex (0 for a vertex in no face)
-    double along_normals = 0;  // their mean over the vertices with a normal
+    Eigen::VectorXd per_vertex;  // s_i^2 of the noise along the normals (or the direction given) at each vertex (0 for a vertex in no face)
+    double mean = 0;             // their mean over the vertices with a normal
     double degrees_of_freedom = 0;  // of the finest band's lowpass along the normals, per vertex
     double kept = 0;                // its squared action on the normal probe, per vertex
     std::vector<int> impulses;      // outliers (above), in increasing order
@@ -74,7 +75,10 @@ struct NoiseVariance {
 // The umbrella's two runs share `umbrella_cache` when given (else one of their own): the
 // umbrella ignores the positions, so a caller's later umbrella runs on the same triangles
 // (another round, the final lowpass) build nothing again. It should keep any size.
+// With `along`, the noise is measured along that one direction at every vertex instead of
+// along the normals (NoiseModel::AlongDirection).
 NoiseVariance estimate_noise_variance(const Points& points, const Triangles& triangles, const FilterOptions& options,
-                                      FilterCache* umbrella_cache = nullptr);
+                                      FilterCache* umbrella_cache = nullptr,
+                                      const std::optional<Eigen::Vector3d>& along = std::nullopt);
 
 } // namespace geofilter

@@ -8,7 +8,7 @@
 namespace geofilter {
 
 RiskEstimate estimate_risk(const Points& y, const Triangles& triangles, const Smoother& smooth, double step,
-                           std::uint64_t seed, NoiseModel model, const Eigen::VectorXd& noise_variance, Points* smoothed, const Finish& finish,
+                           std::uint64_t seed, const NoiseDirection& noise_direction, const Eigen::VectorXd& noise_variance, Points* smoothed, const Finish& finish,
                            const std::vector<bool>& counted, const Smoother& smooth_perturbed) {
     if (!counted.empty() && counted.size() != static_cast<size_t>(y.rows()))
         throw Error("the risk estimate's vertex flags must number the vertices (" + std::to_string(y.rows()) + "), not " +
@@ -24,14 +24,16 @@ RiskEstimate estimate_risk(const Points& y, const Triangles& triangles, const Sm
                         " at vertex " + std::to_string(i) + ")");
     const Eigen::MatrixXd normal = vertex_normals(y, triangles);
     std::mt19937_64 random(seed);
-    const bool isotropic = model == NoiseModel::Isotropic;
-    // Row i: the probe's direction at vertex i, +-n_i or a +-1 on each axis.
+    const bool isotropic = noise_direction.model == NoiseModel::Isotropic;
+    const bool one_direction = noise_direction.model == NoiseModel::AlongDirection;
+    // Row i: the probe's direction at vertex i, +-n_i (+-the one direction) or a +-1 on each axis.
     Eigen::MatrixXd probe(y.rows(), 3);
     for (Eigen::Index i = 0; i < y.rows(); ++i) {
         if (isotropic)
             for (int k = 0; k < 3; ++k) probe(i, k) = (random() >> 63) ? 1.0 : -1.0;
         else
-            probe.row(i) = ((random() >> 63) ? 1.0 : -1.0) * normal.row(i);
+            probe.row(i) = ((random() >> 63) ? 1.0 : -1.0) *
+                           (one_direction ? Eigen::RowVector3d(noise_direction.direction.transpose()) : Eigen::RowVector3d(normal.row(i)));
     }
 
     const Points perturbed = y + step * probe;

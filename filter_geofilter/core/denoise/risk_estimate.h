@@ -44,10 +44,11 @@ using Smoother = std::function<Points(const Points&)>;
 // the smoothed surface (Denoise's motion along the normals and volume offset: denoise.h).
 using Finish = std::function<Points(const Points& y, const Points& smoothed)>;
 
-// Estimates the risk of `smooth` at y under noise of `model` (noise_direction.h) and variance
+// Estimates the risk of `smooth` at y under noise of `noise.model` (noise_direction.h) and variance
 // `noise_variance[i]` per noisy number of vertex i (one per row of y). Along the normals, the degrees of freedom are the
 // divergence of F along them, estimated with one random +-1 probe b as
-// sum_i b_i n_i . (F(y + step b n) - F(y))_i / step; in every direction, the divergence of F in
+// sum_i b_i n_i . (F(y + step b n) - F(y))_i / step (along one direction, the same with
+// noise.direction for n_i); in every direction, the divergence of F in
 // 3-D, with a random +-1 probe on each coordinate. Both unbiased; the relative spread is about
 // sqrt(2 / dof). Which one matters for smoothers that keep the tangential positions
 // (cotangent weights): along the normals they keep no noise there, in every direction they
@@ -65,7 +66,7 @@ using Finish = std::function<Points(const Points& y, const Points& smoothed)>;
 // thread while `smooth` runs: the two runs are independent, and on a smoother that keeps its
 // own state for each (Denoise's caches) the second core does the other half of the work.
 RiskEstimate estimate_risk(const Points& y, const Triangles& triangles, const Smoother& smooth, double step,
-                           std::uint64_t seed, NoiseModel model, const Eigen::VectorXd& noise_variance, Points* smoothed = nullptr,
+                           std::uint64_t seed, const NoiseDirection& noise, const Eigen::VectorXd& noise_variance, Points* smoothed = nullptr,
                            const Finish& finish = {}, const std::vector<bool>& counted = {},
                            const Smoother& smooth_perturbed = {});
 
