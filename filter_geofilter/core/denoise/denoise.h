@@ -174,7 +174,8 @@ constexpr double denoise_motion_bound_sigmas = 3.0;
 // What Denoise makes of a lowpass's result on noisy points: when the noise looks along the
 // normals, only the motion along them (normal_motion.h), no longer than
 // denoise_motion_bound_sigmas standard deviations of the noise along them (`noise_sigma`, per vertex);
-// then each closed component given back its volume (volume.h: the lowpass shrinks thin
+// when it looks along one direction (NoiseModel::AlongDirection), only the motion along that
+// direction, bounded the same way; then each closed component given back its volume (volume.h: the lowpass shrinks thin
 // curved parts). The candidates' risk is estimated on this, the surface Denoise returns, not
 // on the lowpass alone: along the normals the two rank differently: ranking the lowpasses
 // alone left Denoise 15-33 % farther from the truth on bunny00 at 0.3 and 0.5 mean edge

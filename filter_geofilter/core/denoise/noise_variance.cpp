@@ -43,11 +43,11 @@ double expected_order_square(int m, int k) {
 
 NoiseVariance estimate_noise_variance(const Points& points, const Triangles& triangles, const FilterOptions& options,
                                       FilterCache* umbrella_cache, const std::optional<Eigen::Vector3d>& along) {
-    // The directions the noise is measured along (named for the usual case).
-    Eigen::MatrixXd normal = smoothed_vertex_normals(points, triangles);
+    // The direction the noise is measured along at each vertex: its normal, or the one given.
+    Eigen::MatrixXd direction = smoothed_vertex_normals(points, triangles);
     if (along)
-        for (Eigen::Index i = 0; i < normal.rows(); ++i)
-            if (normal.row(i).squaredNorm() > 0) normal.row(i) = along->normalized().transpose();
+        for (Eigen::Index i = 0; i < direction.rows(); ++i)
+            if (direction.row(i).squaredNorm() > 0) direction.row(i) = along->normalized().transpose();
     const double h = mean_edge_length(points, triangles);
     const double size = bounding_box_diagonal(points);
     std::mt19937_64 random(20261203);
@@ -65,18 +65,18 @@ NoiseVariance estimate_noise_variance(const Points& points, const Triangles& tri
     FilterCache own(std::numeric_limits<Eigen::Index>::max());
     FilterCache& cache = umbrella_cache ? *umbrella_cache : own;
     const Points f = apply_filter(points, triangles, finest, o, nullptr, &cache);
-    const Points f_probe = apply_filter(points + h * (sign.asDiagonal() * normal), triangles, finest, o, nullptr, &cache);
+    const Points f_probe = apply_filter(points + h * (sign.asDiagonal() * direction), triangles, finest, o, nullptr, &cache);
 
     Eigen::VectorXd residual = Eigen::VectorXd::Zero(points.rows());
     std::vector<bool> has_normal(static_cast<std::size_t>(points.rows()), false);
     double divergence = 0, kept = 0;
     int vertices = 0;
     for (Eigen::Index i = 0; i < points.rows(); ++i) {
-        if (normal.row(i).squaredNorm() == 0) continue;
+        if (direction.row(i).squaredNorm() == 0) continue;
         ++vertices;
         has_normal[static_cast<std::size_t>(i)] = true;
-        residual[i] = (points.row(i) - f.row(i)).dot(normal.row(i));
-        const double response = (f_probe.row(i) - f.row(i)).dot(normal.row(i)) / h;
+        residual[i] = (points.row(i) - f.row(i)).dot(direction.row(i));
+        const double response = (f_probe.row(i) - f.row(i)).dot(direction.row(i)) / h;
         divergence += sign[i] * response;
         kept += response * response;
     }
