@@ -1,7 +1,6 @@
 #include "core/mesh/orientation.h"
 
 #include <algorithm>
-#include <tuple>
 #include <vector>
 
 namespace geofilter {
@@ -14,42 +13,46 @@ ConsistentOrientation orient_consistently(const Triangles& triangles, Eigen::Ind
                 return false;
         return true;
     };
-    // Each face's edges as (smaller end, larger end, face, runs from smaller to larger),
-    // sorted so that the faces of one edge lie side by side.
+    // Each face's edge k (slot 3 f + k) filed under its smaller end: the faces of one edge meet
+    // in that vertex's few entries, without sorting every edge of the mesh.
     struct Side {
-        int low, high;
-        Eigen::Index face;
-        bool forwards;
+        int high;
+        int slot;
+        bool forwards;  // runs from the smaller end to the larger
     };
-    std::vector<Side> sides;
-    sides.reserve(static_cast<size_t>(3 * faces));
+    std::vector<int> start(static_cast<size_t>(vertex_count) + 1, 0);
+    for (Eigen::Index f = 0; f < faces; ++f)
+        if (usable(f))
+            for (int k = 0; k < 3; ++k) ++start[static_cast<size_t>(std::min(triangles(f, k), triangles(f, (k + 1) % 3))) + 1];
+    for (size_t v = 0; v + 1 < start.size(); ++v) start[v + 1] += start[v];
+    std::vector<Side> sides(static_cast<size_t>(start.back()));
+    std::vector<int> filled(start.begin(), start.end() - 1);
     for (Eigen::Index f = 0; f < faces; ++f) {
         if (!usable(f)) continue;
         for (int k = 0; k < 3; ++k) {
             const int a = triangles(f, k), b = triangles(f, (k + 1) % 3);
-            sides.push_back({std::min(a, b), std::max(a, b), f, a < b});
+            sides[static_cast<size_t>(filled[static_cast<size_t>(std::min(a, b))]++)] = {std::max(a, b), static_cast<int>(3 * f + k), a < b};
         }
     }
-    std::sort(sides.begin(), sides.end(), [](const Side& x, const Side& y) {
-        return std::tie(x.low, x.high, x.face) < std::tie(y.low, y.high, y.face);
-    });
-    // Across a two-face edge: the neighbour and whether the two faces run it the same way
-    // (then one of them is wound against the other).
-    struct Link {
-        Eigen::Index face;
-        bool same_way;
-    };
-    std::vector<std::vector<Link>> links(static_cast<size_t>(faces));
-    for (size_t i = 0; i < sides.size();) {
-        size_t j = i;
-        while (j < sides.size() && sides[j].low == sides[i].low && sides[j].high == sides[i].high) ++j;
-        if (j - i == 2 && sides[i].face != sides[i + 1].face) {
-            const bool same = sides[i].forwards == sides[i + 1].forwards;
-            links[static_cast<size_t>(sides[i].face)].push_back({sides[i + 1].face, same});
-            links[static_cast<size_t>(sides[i + 1].face)].push_back({sides[i].face, same});
+    // Across each slot: the face on the other side of a two-face edge (-1: none), and whether
+    // the two run it the same way (then one is wound against the other).
+    std::vector<Eigen::Index> across(static_cast<size_t>(3 * faces), -1);
+    std::vector<bool> same_way(static_cast<size_t>(3 * faces), false);
+    for (size_t v = 0; v + 1 < start.size(); ++v)
+        for (int i = start[v]; i < start[v + 1]; ++i) {
+            int match = -1, count = 1;
+            for (int j = start[v]; j < start[v + 1]; ++j)
+                if (j != i && sides[static_cast<size_t>(j)].high == sides[static_cast<size_t>(i)].high) {
+                    match = j;
+                    ++count;
+                }
+            if (count != 2) continue;
+            const Side& x = sides[static_cast<size_t>(i)];
+            const Side& y = sides[static_cast<size_t>(match)];
+            if (x.slot / 3 == y.slot / 3) continue;
+            across[static_cast<size_t>(x.slot)] = y.slot / 3;
+            same_way[static_cast<size_t>(x.slot)] = x.forwards == y.forwards;
         }
-        i = j;
-    }
 
     ConsistentOrientation out{triangles, 0, 0};
     std::vector<signed char> turn(static_cast<size_t>(faces), -1);  // -1: not reached yet
@@ -61,12 +64,15 @@ ConsistentOrientation orient_consistently(const Triangles& triangles, Eigen::Ind
         bool orientable = true;
         for (size_t next = 0; next < patch.size(); ++next) {
             const Eigen::Index f = patch[next];
-            for (const Link& l : links[static_cast<size_t>(f)]) {
-                const signed char wanted = static_cast<signed char>(turn[static_cast<size_t>(f)] ^ (l.same_way ? 1 : 0));
-                signed char& t = turn[static_cast<size_t>(l.face)];
+            for (int k = 0; k < 3; ++k) {
+                const auto slot = static_cast<size_t>(3 * f + k);
+                const Eigen::Index g = across[slot];
+                if (g < 0) continue;
+                const signed char wanted = static_cast<signed char>(turn[static_cast<size_t>(f)] ^ (same_way[slot] ? 1 : 0));
+                signed char& t = turn[static_cast<size_t>(g)];
                 if (t < 0) {
                     t = wanted;
-                    patch.push_back(l.face);
+                    patch.push_back(g);
                 } else if (t != wanted) {
                     orientable = false;
                 }
