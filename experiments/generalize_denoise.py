@@ -28,9 +28,11 @@ Denoise runs through meshlabserver 2020.09 and the plugin of this tree, as the s
 MeshLab's Taubin, HC Laplacian, Laplacian (cotangent) and TwoStep run at their defaults and at
 their best over a sweep scored against the truth (an oracle no user has).
 
-    experiments/run generalize_denoise [--half tuning|report] [--denoise-only | --as-clouds] [--families a,b]
+    experiments/run generalize_denoise [--half tuning|report | --seeds 6,7,...] [--denoise-only | --as-clouds] [--families a,b]
 
-Writes <out>/generalize.json; the report half of a full run writes docs/results/generalize.md.
+--seeds draws cases from seeds that neither half holds (from 6 up): held out from every choice
+made so far. Writes <out>/generalize-<half or seeds>.json (and .md); the report half of a full run
+writes docs/results/generalize.md.
 """
 import argparse
 import json
@@ -452,7 +454,7 @@ def run_meshlab(d, case, inp):
     path = os.path.join(d, "denoise.ply")
     r, _ = c.run(d, steps, inputs=[inp], outputs=[(path, None)], name="denoise")
     out["denoise"] = (h.read_ply(path).vertices, [line for line in r.log if "pattern of bumps" in line or "cutoff sc" in line
-                                                  or "leaving the mesh" in line or "fell back" in line])
+                                                  or "noise model" in line or "no lowpass scored below" in line or "fell back" in line])
     for key, counts in cd.SWEEP.items():
         if key == "twostep":
             counts = [1, 3, 10]
@@ -500,7 +502,7 @@ def run_case(case, work, denoise_only, cloud=False):
     if denoise_only:
         v, log = denoise_python(case, cloud)
         rows["denoise"] = dict(m(v), log=[line for line in log if "pattern of bumps" in line or "cutoff sc" in line
-                                         or "leaving the mesh" in line or "fell back" in line])
+                                         or "noise model" in line or "no lowpass scored below" in line or "fell back" in line])
     else:
         for key, (v, setting) in run_meshlab(d, case, inp).items():
             rows[key] = dict(m(v), log=setting) if key == "denoise" else dict(m(v), setting=setting)
@@ -519,9 +521,11 @@ def fmt(r):
     return f"{1e3 * r['rms']:.3f} / {r['nerr']:.1f}°"
 
 
-def page(results, half):
-    L = [f"Cases of the **{half}** half (seeds {', '.join(map(str, HALF[half]))} of each family); Denoise's constants"
-         " were chosen on the other half." if half == "report" else f"Cases of the {half} half.",
+def page(results, half, seeds):
+    L = [f"Cases of the **{half}** half (seeds {', '.join(map(str, seeds))} of each family); Denoise's constants"
+         " were chosen on the other half." if half == "report" else
+         f"Cases of the {half} half." if half in HALF else
+         f"Cases of seeds {', '.join(map(str, seeds))}, which neither half holds.",
          "RMS vertex distance to the truth in 1e-3 of the bounding-box diagonal / mean face-normal error. *best* is a"
          " smoother's best over its sweep, scored against the truth (an oracle no user has).\n"]
     for kind, families in (("Feature scale", FEATURE), ("Sampling noise", NOISE)):
@@ -575,6 +579,7 @@ def page(results, half):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--half", choices=list(HALF), default="report")
+    ap.add_argument("--seeds", default="", help="comma-separated seeds from 6 up instead of a half: draws held out from every choice")
     ap.add_argument("--families", default=",".join(FEATURE + NOISE))
     ap.add_argument("--denoise-only", action="store_true", help="Denoise through the Python module only, no MeshLab")
     ap.add_argument("--as-clouds", action="store_true",
@@ -585,12 +590,19 @@ def main():
         if any(fam not in NOISE for fam in args.families.split(",")):
             ap.error("--as-clouds takes sampling-noise families only: " + ",".join(NOISE))
         args.denoise_only = True
+    seeds = HALF[args.half]
+    label = args.half
+    if args.seeds:
+        seeds = [int(s) for s in args.seeds.split(",")]
+        if any(s in SEEDS for s in seeds):
+            ap.error(f"--seeds takes seeds that neither half holds ({len(SEEDS)} and up)")
+        label = "seeds-" + "-".join(map(str, seeds))
     os.makedirs(args.out, exist_ok=True)
     work = tempfile.mkdtemp(prefix="generalize-")
     t0 = time.perf_counter()
     results = []
     for fam in args.families.split(","):
-        for seed in HALF[args.half]:
+        for seed in seeds:
             case = make_case(fam, seed)
             r = run_case(case, work, args.denoise_only, args.as_clouds)
             results.append(r)
@@ -599,7 +611,7 @@ def main():
             print(f"{r['name']}: input {fmt(w['input'])} -> Denoise {fmt(w['denoise'])}"
                   f" ({w['denoise']['rms'] / w['input']['rms']:.3f} of the input's RMS; {w['denoise']['seconds']:.1f} s){extra}",
                   flush=True)
-            name = f"generalize-{args.half}{'-clouds' if args.as_clouds else ''}.json"
+            name = f"generalize-{label}{'-clouds' if args.as_clouds else ''}.json"
             with open(os.path.join(args.out, name), "w") as out:
                 json.dump(results, out, indent=1)
     total = time.perf_counter() - t0
@@ -607,8 +619,8 @@ def main():
     shutil.rmtree(work)
     if args.denoise_only:
         return
-    text = page(results, args.half) + f"\nTotal run {total:.0f} s."
-    with open(os.path.join(args.out, f"generalize-{args.half}.md"), "w") as out:
+    text = page(results, label, seeds) + f"\nTotal run {total:.0f} s."
+    with open(os.path.join(args.out, f"generalize-{label}.md"), "w") as out:
         out.write(text)
     if args.half == "report" and not pages.partial_run(ap, args):
         pages.write_page("generalize", "# Denoise on cases it was not tuned on\n\n" + text)
