@@ -580,14 +580,15 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--half", choices=list(HALF), default="report")
     ap.add_argument("--seeds", default="", help="comma-separated seeds from 6 up instead of a half: draws held out from every choice")
-    ap.add_argument("--families", default=",".join(FEATURE + NOISE))
+    ap.add_argument("--families", default=",".join(FEATURE + NOISE),
+                    help="comma-separated families, or 'feature' / 'noise' for all of one kind")
     ap.add_argument("--denoise-only", action="store_true", help="Denoise through the Python module only, no MeshLab")
     ap.add_argument("--as-clouds", action="store_true",
                     help="the sampling-noise cases' vertices as point clouds (no faces), Denoise only")
     ap.add_argument("--out", default=os.path.join(c.TOP, "results", "generalize"))
     args = ap.parse_args()
     if args.as_clouds:
-        if any(fam not in NOISE for fam in args.families.split(",")):
+        if any(fam not in NOISE + ["noise"] for fam in args.families.split(",")):
             ap.error("--as-clouds takes sampling-noise families only: " + ",".join(NOISE))
         args.denoise_only = True
     seeds = HALF[args.half]
@@ -601,7 +602,8 @@ def main():
     work = tempfile.mkdtemp(prefix="generalize-")
     t0 = time.perf_counter()
     results = []
-    for fam in args.families.split(","):
+    families = [f for name in args.families.split(",") for f in {"feature": FEATURE, "noise": NOISE}.get(name, [name])]
+    for fam in families:
         for seed in seeds:
             case = make_case(fam, seed)
             r = run_case(case, work, args.denoise_only, args.as_clouds)
