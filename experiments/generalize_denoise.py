@@ -598,6 +598,8 @@ def main():
         if any(s in SEEDS for s in seeds):
             ap.error(f"--seeds takes seeds that neither half holds ({len(SEEDS)} and up)")
         label = "seeds-" + "-".join(map(str, seeds))
+    if args.families != ap.get_default("families"):
+        label += "-" + args.families.replace(",", "-")  # a run of other families writes files of its own
     os.makedirs(args.out, exist_ok=True)
     work = tempfile.mkdtemp(prefix="generalize-")
     t0 = time.perf_counter()
