@@ -32,6 +32,18 @@ namespace {
 
 using reference::rms_distance;
 
+// The RMS distance to `clean` of the best of Denoise's candidates for mean edge length h,
+// each applied whole to `noisy` (an oracle: what Denoise's own choice is measured against).
+double best_candidate_applied_whole(const Points& noisy, const Triangles& triangles, const Points& clean, double h) {
+    double best = INFINITY;
+    FilterOptions options;
+    for (const DenoiseDesign& d : denoise_sampling_candidates(h, 4, {})) {
+        options.op = d.op;
+        best = std::min(best, rms_distance(apply_filter(noisy, triangles, d.g, options), clean));
+    }
+    return best;
+}
+
 
 // Total standard deviation sigma, as the comparison's noise in random directions.
 Points noised_in_every_direction(const Mesh& m, double sigma, unsigned seed) {
@@ -355,12 +367,7 @@ TEST(NoiseDirection, TellsTheDirectionOnATorusSampledLongerOneWay) {
         // And Denoise ends near the best of its candidates, measured against the clean torus.
         const FilterSpec& spec = *find_filter("denoise");
         const RunOutput out = run_filter(spec, default_values(spec, false), {noisy, m.triangles, {}, {}});
-        double best = INFINITY;
-        FilterOptions options;
-        for (const DenoiseDesign& d : denoise_sampling_candidates(mean_edge_length(noisy, m.triangles), 4, {})) {
-            options.op = d.op;
-            best = std::min(best, rms_distance(apply_filter(noisy, m.triangles, d.g, options), m.points));
-        }
+        const double best = best_candidate_applied_whole(noisy, m.triangles, m.points, mean_edge_length(noisy, m.triangles));
         EXPECT_LE(rms_distance(out.points, m.points), 1.1 * best);
     }
 }
@@ -408,12 +415,7 @@ TEST(NoiseDirection, NoiseAlongOneViewDirectionIsReadAndMeasuredAlongIt) {
     // (on this smooth, regular torus the lowpass drifts little along the surface).
     const FilterSpec& spec = *find_filter("denoise");
     const RunOutput out = run_filter(spec, default_values(spec, false), {noisy, m.triangles, {}, {}});
-    double best = INFINITY;
-    FilterOptions options;
-    for (const DenoiseDesign& d : denoise_sampling_candidates(h, 4, {})) {
-        options.op = d.op;
-        best = std::min(best, rms_distance(apply_filter(noisy, m.triangles, d.g, options), m.points));
-    }
+    const double best = best_candidate_applied_whole(noisy, m.triangles, m.points, h);
     EXPECT_LT(rms_distance(out.points, m.points), 1.05 * best);
     EXPECT_TRUE(std::any_of(out.log.begin(), out.log.end(), [](const std::string& line) {
         return line.rfind("noise model: along one direction", 0) == 0;
@@ -431,12 +433,7 @@ TEST(NoiseDirection, DenoiseRemovesADepthScannersNoiseAlongItsView) {
     const Points noisy = noised_along_a_view(clean.points, Eigen::Vector3d(1, 2, 2).normalized(), 0.1 * h, 0.5 * h, 11, &sigma);
     const FilterSpec& spec = *find_filter("denoise");
     const RunOutput out = run_filter(spec, default_values(spec, false), {noisy, clean.triangles, {}, {}});
-    double best = INFINITY;
-    FilterOptions options;
-    for (const DenoiseDesign& d : denoise_sampling_candidates(h, 4, {})) {
-        options.op = d.op;
-        best = std::min(best, rms_distance(apply_filter(noisy, clean.triangles, d.g, options), clean.points));
-    }
+    const double best = best_candidate_applied_whole(noisy, clean.triangles, clean.points, h);
     EXPECT_LT(rms_distance(out.points, clean.points), 0.8 * best);
 }
 
@@ -472,16 +469,12 @@ TEST(RiskEstimate, DenoisePicksNearlyTheBestCandidateAgainstTheTruth) {
         const RunOutput out = run_filter(spec, default_values(spec, false), {noisy, clean.triangles, none, {}});
         const double chosen = rms_distance(out.points, clean.points);
 
-        double best = INFINITY;
-        FilterOptions options;
-        for (const DenoiseDesign& d : denoise_sampling_candidates(mean_edge_length(noisy, clean.triangles), 4, {})) {
-            options.op = d.op;
-            best = std::min(best, rms_distance(apply_filter(noisy, clean.triangles, d.g, options), clean.points));
-        }
+        const double best = best_candidate_applied_whole(noisy, clean.triangles, clean.points, mean_edge_length(noisy, clean.triangles));
         EXPECT_LE(chosen, 1.1 * best);
         if (c.of_input > 0) EXPECT_LT(chosen, c.of_input * rms_distance(noisy, clean.points));
         // Noise along the normals: dropping the chosen lowpass's sideways drift (normal_motion.h)
         // brings the scan closer than the lowpass itself, both given back their volume.
+        FilterOptions options;
         options.op = out.op;
         const Points lowpass = restore_volume(noisy, apply_filter(noisy, clean.triangles, out.transfer, options), clean.triangles);
         if (!c.isotropic) EXPECT_LT(chosen, 0.99 * rms_distance(lowpass, clean.points));

@@ -45,9 +45,11 @@ NoiseVariance estimate_noise_variance(const Points& points, const Triangles& tri
                                       FilterCache* umbrella_cache, const std::optional<Eigen::Vector3d>& along) {
     // The direction the noise is measured along at each vertex: its normal, or the one given.
     Eigen::MatrixXd direction = smoothed_vertex_normals(points, triangles);
-    if (along)
+    if (along) {
+        const Eigen::RowVector3d unit = along->normalized().transpose();
         for (Eigen::Index i = 0; i < direction.rows(); ++i)
-            if (direction.row(i).squaredNorm() > 0) direction.row(i) = along->normalized().transpose();
+            if (direction.row(i).squaredNorm() > 0) direction.row(i) = unit;
+    }
     const double h = mean_edge_length(points, triangles);
     const double size = bounding_box_diagonal(points);
     std::mt19937_64 random(20261203);
