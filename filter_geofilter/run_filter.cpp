@@ -441,7 +441,10 @@ RunOutput filter_surface(const FilterSpec& spec, const ParameterValues& given, c
                           ": standard deviation " + format_number(sigma) + " = " +
                           format_number(sigma / mean_edge_length(input.points, input.triangles)) +
                           " mean edge lengths on average (from what the umbrella lowpass at frequency 1 removes along"
-                          " it, per vertex over its " + std::to_string(noise_neighbourhood_vertices) + " nearest)");
+                          " it, per vertex over its " + std::to_string(noise_neighbourhood_vertices) + " nearest" +
+                          (one_direction ? std::string(")")
+                                         : ", less what the same reads on the mesh smoothed along its normals, the clean mesh's own"
+                                           " detail and sampling: " + format_number(std::sqrt(sampled->own_detail_variance)) + ")"));
         if (sampled->impulses > 0)
             out.log.push_back("impulses: " + std::to_string(sampled->impulses) + " vertices stood more than " +
                               format_number(denoise_impulse_sigmas) + " standard deviations of their noise out of the surface,"
