@@ -21,6 +21,8 @@ Sampling noise (nothing selected, the truth is the clean mesh):
   anisotropic      tori sampled 3-5x longer one way than the other, jittered (no face folded); noise either way
   holes-debris     a scan with holes, a second closed component and small debris fragments
   cad              sharp-edged parts (a box, a capped cylinder, fandisk); noise either way
+  scan-faint       a scan with faint noise, 0-0.05 mean edge lengths, either way: nearly clean,
+                   where what Denoise must not do is make it worse
 
 Denoise runs through meshlabserver 2020.09 and the plugin of this tree, as the smoothers do
 (with --denoise-only, through the Python module and without MeshLab: the tuning loop; with
@@ -348,7 +350,7 @@ def noise_case(family, seed):
     hb = c.mean_edge_length(v, f)
     if family in ("scan-normal", "scan-random"):
         direction = family[5:]
-    k = rng.uniform(0.1, 0.5)
+    k = rng.uniform(0.1, 0.5) if family != "scan-faint" else rng.uniform(0.0, 0.05)
     if family == "scan-depth":
         view = rng.standard_normal(3)
         view /= np.linalg.norm(view)
@@ -372,7 +374,7 @@ def noise_case(family, seed):
 
 
 FEATURE = ["sphere-gauss", "sphere-mixed", "torus-dents", "scan-plateau", "patch-grooves"]
-NOISE = ["scan-normal", "scan-random", "scan-depth", "scan-outliers", "anisotropic", "holes-debris", "cad"]
+NOISE = ["scan-normal", "scan-random", "scan-depth", "scan-outliers", "anisotropic", "holes-debris", "cad", "scan-faint"]
 
 
 def make_case(family, seed):
