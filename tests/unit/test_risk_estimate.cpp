@@ -493,7 +493,7 @@ TEST(RiskEstimate, DenoisePicksNearlyTheBestCandidateAgainstTheTruth) {
 
 // A clean scan reads as noise to the finest band alone: the curvature times irregular edge
 // lengths varies from vertex to vertex (the clean man read 0.06 mean edge lengths, the clean
-// fandisk 0.02). With the clean mesh's own reading subtracted (denoise_own_detail_cutoff),
+// fandisk 0.02). With the clean mesh's own reading subtracted (subtract_own_detail),
 // Denoise finds no noise on them and returns them exactly; without it, it moved the man by
 // 0.32e-3 RMS and folded 175 of its faces, and at noise of 0.02 edge lengths it ended 3x
 // farther from the clean man than its input. Noise that is there is still read: 0.3 edge

@@ -245,23 +245,8 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
     // that direction grazes shows little of it.
     if (best.noise.model == NoiseModel::AlongDirection)
         best.variance = estimate_noise_variance(y, triangles, options, &umbrella, best.noise.direction);
-    if (best.noise.model != NoiseModel::AlongDirection) {
-        FilterOptions o = options;
-        o.op = Operator::Umbrella;
-        o.progress = nullptr;
-        const Points smoothed = keep_normal_motion(
-            y, apply_filter(y, triangles, design_butterworth_lowpass(denoise_own_detail_cutoff, order), o, nullptr, &umbrella),
-            triangles, 180);
-        const Eigen::VectorXd own = estimate_noise_variance(smoothed, triangles, options, &umbrella).per_vertex;
-        // The means stay over the vertices the estimate counted (those with a normal).
-        const double before = best.variance.per_vertex.sum();
-        best.variance.per_vertex = (best.variance.per_vertex - own).cwiseMax(0.0);
-        const double after = best.variance.per_vertex.sum();
-        if (before > 0) {
-            best.own_detail_variance = best.variance.mean * (before - after) / before;
-            best.variance.mean *= after / before;
-        }
-    }
+    if (best.noise.model != NoiseModel::AlongDirection)
+        best.own_detail_variance = subtract_own_detail(best.variance, y, triangles, order, options, &umbrella);
     const Eigen::VectorXd sigma = best.variance.per_vertex.cwiseSqrt();
     for (const DenoiseDesign& design : candidates) best.scores.emplace_back(design, std::nullopt);
     best.krylov_steps.assign(candidates.size(), 0);

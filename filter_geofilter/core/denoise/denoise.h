@@ -209,21 +209,6 @@ constexpr int denoise_scoring_margin = 20;
 // 0.98-2.25e-3 RMS, three 0.32-0.80, eight and more 0.23-0.79 (none found after that).
 constexpr int denoise_impulse_rounds = 20;
 
-// The noise estimate (noise_variance.h) reads the clean mesh's own finest detail too: an
-// umbrella offset along the normal is the curvature times the local edge lengths squared, and
-// on irregular sampling that varies from vertex to vertex like noise. On the five scans with
-// no noise at all it read 0.008-0.06 mean edge lengths, and Denoise moved the clean man by
-// 0.32e-3 RMS and folded 175 of its faces, the clean fandisk by 0.30e-3. That reading is taken
-// again on the mesh smoothed along its normals by the umbrella lowpass at this per-vertex
-// frequency (the middle candidate, where the search starts), its sampling kept: the noise is
-// gone there, the curvature and the sampling are not; what it reads is subtracted, vertex by
-// vertex. The clean scans then read no noise and are returned as they were (0.18 reads the
-// same); on the tuning half, and on 35 more tuning draws (even seeds 12-20), one case of 56
-// chose another lowpass. Not along one direction: keeping the sampling there keeps the noise's
-// sideways part, which the smoothed mesh then reads as its own (the depth scans of the
-// tuning half chose lowpasses 1.5-2.2x farther from the truth).
-constexpr double denoise_own_detail_cutoff = 0.35;
-
 struct SamplingDenoise {
     Points points;         // the chosen lowpass applied to the input, its motion along the normals only
                            // when the noise looks so, closed components' volume restored
@@ -259,7 +244,7 @@ struct SamplingDenoise {
     double input_risk = 0;
     bool input_kept = false;
     // The mean over the vertices of the clean mesh's own reading subtracted from the noise's
-    // variance (denoise_own_detail_cutoff); 0 along one direction, where none is.
+    // variance (subtract_own_detail); 0 along one direction, where none is.
     double own_detail_variance = 0;
 };
 

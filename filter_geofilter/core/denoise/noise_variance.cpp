@@ -1,4 +1,5 @@
 #include "core/denoise/noise_variance.h"
+#include "core/denoise/normal_motion.h"
 #include "core/design/butterworth.h"
 #include "core/filter/filter_cache.h"
 #include "core/mesh/components.h"
@@ -178,6 +179,24 @@ NoiseVariance estimate_noise_variance(const Points& points, const Triangles& tri
     }
     out.mean = sum / vertices;
     return out;
+}
+
+double subtract_own_detail(NoiseVariance& variance, const Points& points, const Triangles& triangles, int order,
+                           const FilterOptions& options, FilterCache* umbrella_cache) {
+    FilterOptions o = options;
+    o.op = Operator::Umbrella;
+    o.progress = nullptr;
+    const Points lowpassed = apply_filter(points, triangles, design_butterworth_lowpass(own_detail_cutoff, order), o, nullptr, umbrella_cache);
+    // Every vertex keeps its place along the surface, so the sampling stays as it was.
+    const Points smoothed = keep_normal_motion(points, lowpassed, triangles, 180);
+    const Eigen::VectorXd own = estimate_noise_variance(smoothed, triangles, options, umbrella_cache).per_vertex;
+    const double before = variance.per_vertex.sum();
+    variance.per_vertex = (variance.per_vertex - own).cwiseMax(0.0);
+    if (!(before > 0)) return 0.0;
+    const double kept = variance.per_vertex.sum() / before;
+    const double subtracted = variance.mean * (1 - kept);
+    variance.mean *= kept;
+    return subtracted;
 }
 
 } // namespace geofilter
