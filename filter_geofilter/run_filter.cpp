@@ -481,9 +481,11 @@ RunOutput filter_surface(const FilterSpec& spec, const ParameterValues& given, c
                           format_number(t.direction, 2) + ", scoring " + format_number(t.scoring, 2) +
                           (sampled->input_kept ? std::string(")") : ", the chosen lowpass and what follows it " + format_number(t.final_run, 2) + ")"));
         if (sampled->input_kept) {
-            const std::string why = "no lowpass scored below leaving the mesh as it is: the noise (" + format_number(sigma) +
-                                    " along the normals) is smaller than what the mildest of them would take of the"
-                                    " surface's own shape, so the mesh was left unchanged";
+            const std::string why =
+                sigma > 0 ? "no lowpass scored below leaving the mesh as it is: the noise (" + format_number(sigma) +
+                                " along the normals) is smaller than what the mildest of them would take of the"
+                                " surface's own shape, so the mesh was left unchanged"
+                          : std::string("no noise was read once the clean mesh's own detail was subtracted, so the mesh was left unchanged");
             out.report.warnings.push_back(why);
         } else {
             out.log.push_back("cutoff sc = " + format_number(d.cutoff) + " from the sampling: " + d.origin);
