@@ -81,19 +81,19 @@ NoiseVariance estimate_noise_variance(const Points& points, const Triangles& tri
                                       FilterCache* umbrella_cache = nullptr,
                                       const std::optional<Eigen::Vector3d>& along = std::nullopt);
 
-// The noise estimate above reads the clean mesh's own finest detail too: an
-// umbrella offset along the normal is the curvature times the local edge lengths squared, and
-// on irregular sampling that varies from vertex to vertex like noise. On the five scans with
-// no noise at all it read 0.008-0.06 mean edge lengths, and Denoise moved the clean man by
-// 0.32e-3 RMS and folded 175 of its faces, the clean fandisk by 0.30e-3. That reading is taken
-// again on the mesh smoothed along its normals by the umbrella lowpass at this per-vertex
-// frequency (the middle of Denoise's umbrella cutoffs, where its search starts), its sampling kept: the noise is
-// gone there, the curvature and the sampling are not; what it reads is subtracted, vertex by
-// vertex. The clean scans then read no noise and are returned as they were (0.18 reads the
-// same); on the tuning half, and on 35 more tuning draws (even seeds 12-20), one case of 56
-// chose another lowpass. Not for noise along one direction: keeping the sampling there keeps the noise's
-// sideways part, which the smoothed mesh then reads as its own (the depth scans of the
-// tuning half chose lowpasses 1.5-2.2x farther from the truth).
+// The noise estimate above reads the clean mesh's own finest detail too: an umbrella offset
+// along the normal is the curvature times the local edge lengths squared, and on irregular
+// sampling that varies from vertex to vertex like noise. On the five scans with no noise at
+// all it read 0.008-0.06 mean edge lengths, and Denoise moved the clean man by 0.32e-3 RMS
+// and folded 175 of its faces, the clean fandisk by 0.30e-3. That reading is taken again on
+// the mesh smoothed along its normals by the umbrella lowpass at this per-vertex frequency
+// (the middle of Denoise's umbrella cutoffs, where its search starts), its sampling kept: the
+// noise is gone there, the curvature and the sampling are not; what it reads is subtracted,
+// vertex by vertex. Four of the five clean scans then read no noise and are returned as they
+// were (0.18 reads the same); on the tuning half, and on 35 more tuning draws (even seeds
+// 12-20), one case of 56 chose another lowpass. Not for noise along one direction: keeping
+// the sampling there keeps the noise's sideways part, which the smoothed mesh then reads as
+// its own (the depth scans of the tuning half chose lowpasses 1.5-2.2x farther from the truth).
 constexpr double own_detail_cutoff = 0.35;
 
 // Subtracts from `variance`, estimated on `points`, what the same estimate reads on `points`
