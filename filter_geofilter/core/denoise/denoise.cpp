@@ -184,7 +184,7 @@ Points denoise_output(const Points& noisy, Points lowpassed, const Triangles& tr
     } else if (noise.model == NoiseModel::AlongDirection) {
         // The noise moved each vertex along the one direction only, so its place across that
         // direction is right: only the lowpass's motion along it is kept.
-        const Eigen::RowVector3d along = noise.direction.normalized().transpose();
+        const Eigen::RowVector3d along = noise.direction.transpose();  // unit (NoiseDirection)
         for (Eigen::Index i = 0; i < lowpassed.rows(); ++i)
             lowpassed.row(i) = noisy.row(i) + (lowpassed.row(i) - noisy.row(i)).dot(along) * along;
         lowpassed = bound_motion(noisy, lowpassed, denoise_motion_bound_sigmas * noise_sigma, bound);
@@ -243,9 +243,11 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
         best.noise = estimate_noise_direction(usable_y, usable.triangles);
     // Noise along one direction is measured along it: along the normals a vertex whose surface
     // that direction grazes shows little of it.
+    // Otherwise the clean mesh's own reading is taken out of it (subtract_own_detail: not along
+    // one direction, where the smoothed mesh keeps the noise's sideways part).
     if (best.noise.model == NoiseModel::AlongDirection)
         best.variance = estimate_noise_variance(y, triangles, options, &umbrella, best.noise.direction);
-    if (best.noise.model != NoiseModel::AlongDirection)
+    else
         best.own_detail_variance = subtract_own_detail(best.variance, y, triangles, order, options, &umbrella);
     const Eigen::VectorXd sigma = best.variance.per_vertex.cwiseSqrt();
     for (const DenoiseDesign& design : candidates) best.scores.emplace_back(design, std::nullopt);
