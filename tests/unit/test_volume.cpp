@@ -65,3 +65,18 @@ TEST(Volume, OpenComponentsAndLooseVerticesStayPut) {
     EXPECT_TRUE(out.bottomRows(ng + 1) == smoothed.bottomRows(ng + 1));
     EXPECT_NEAR(sphere_volume(out.topRows(ns), s.triangles) / sphere_volume(s.points, s.triangles), 1.0, 1e-9);
 }
+
+// A scan in world or scanner coordinates lies far from the origin. The volume it encloses
+// does not depend on where it lies, and neither must the offset that restores it: the same
+// shrunk sphere a million radii away comes back to its radius about its own centre.
+TEST(Volume, AFarAwaySphereIsRestoredAsAtTheOrigin) {
+    const Mesh m = icosphere(5, 1.0);
+    const Eigen::RowVector3d far(1e6, -2e6, 3e6);
+    const Points placed = m.points.rowwise() + far;
+    const Points shrunk = (0.97 * m.points).rowwise() + far;
+    VolumeRestoreReport report;
+    const Points out = restore_volume(placed, shrunk, m.triangles, &report);
+    EXPECT_NEAR(report.largest_change, 1 - std::pow(0.97, 3), 1e-6);
+    EXPECT_NEAR(report.largest_offset, 0.03, 1e-3);
+    EXPECT_LT(((out.rowwise() - far).rowwise().norm().array() - 1.0).abs().maxCoeff(), 2e-4);
+}
