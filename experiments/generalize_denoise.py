@@ -17,6 +17,7 @@ Sampling noise (nothing selected, the truth is the clean mesh):
   scan-normal      a scan, noise along the normals, 0.1-0.5 mean edge lengths
   scan-random      a scan, noise in random directions, 0.1-0.5
   scan-depth       a scan, noise along one view direction growing with depth (a scanner's)
+  scan-patchy      a scan, noise loud in a few patches and fading to none between them, either way
   scan-outliers    a scan, noise 0.1-0.2 along the normals and 0.5-2 % of vertices thrown 3-6 edges
   anisotropic      tori sampled 3-5x longer one way than the other, jittered (no face folded); noise either way
   holes-debris     a scan with holes, a second closed component and small debris fragments
@@ -359,6 +360,20 @@ def noise_case(family, seed):
         sigma = k * hb * (0.3 + 1.4 * t)
         noise = (sigma * rng.standard_normal(len(v)))[:, None] * view
         label = f"{detail}, sigma {k:.2f}h on average along a view direction, growing with depth"
+    elif family == "scan-patchy":
+        # Noise in patches: loud about a few places, fading to none between them (a scan merged
+        # from takes of different quality, a region rescanned). Its strength is a sum of 1-3
+        # Gaussian blobs 0.1-0.3 of the diagonal wide about random vertices, scaled to mean k.
+        blobs = np.zeros(len(v))
+        diagonal = np.linalg.norm(v.max(0) - v.min(0))
+        for _ in range(rng.integers(1, 4)):
+            centre = v[rng.integers(len(v))]
+            width = rng.uniform(0.1, 0.3) * diagonal
+            blobs += np.exp(-np.sum((v - centre) ** 2, axis=1) / (2 * width ** 2))
+        sigma = k * hb * blobs / blobs.mean()
+        noise = sigma[:, None] * c.sampling_noise(v, f, 1.0 / hb, direction, rng)
+        label = f"{detail}, sigma {k:.2f}h on average {'along the normals' if direction == 'normal' else 'in random directions'}," \
+                f" in patches (0-{sigma.max() / hb:.2f}h)"
     elif family == "scan-outliers":
         k = rng.uniform(0.1, 0.2)
         noise = c.sampling_noise(v, f, k, "normal", rng)
@@ -374,7 +389,8 @@ def noise_case(family, seed):
 
 
 FEATURE = ["sphere-gauss", "sphere-mixed", "torus-dents", "scan-plateau", "patch-grooves"]
-NOISE = ["scan-normal", "scan-random", "scan-depth", "scan-outliers", "anisotropic", "holes-debris", "cad", "scan-faint"]
+NOISE = ["scan-normal", "scan-random", "scan-depth", "scan-patchy", "scan-outliers", "anisotropic", "holes-debris", "cad",
+         "scan-faint"]
 
 
 def make_case(family, seed):

@@ -432,7 +432,12 @@ RunOutput filter_surface(const FilterSpec& spec, const ParameterValues& given, c
                                        format_number(sampled->noise.direction.y(), 3) + ", " +
                                        format_number(sampled->noise.direction.z(), 3) + ") holds " +
                                        format_number(100 * sampled->noise.direction_share, 3) + " % of their variance; " +
-                                       format_number(100 * noise_direction_share, 3) + " % and up: along that direction, else in every direction)"));
+                                       format_number(100 * noise_direction_share, 3) + " % and up: along that direction, else in every direction" +
+                                       (sampled->noise.tangential_ratio_where_noisy > 0
+                                            ? "; where the noise is (a variance of at least " + format_number(noisy_vertex_share) +
+                                                  " of the mean): " + format_number(sampled->noise.tangential_ratio_where_noisy) +
+                                                  "; below 2 there: along the normals"
+                                            : std::string()) + ")"));
         const auto scored = std::count_if(sampled->scores.begin(), sampled->scores.end(),
                                           [](const auto& candidate) { return candidate.second.has_value(); });
         const double sigma = std::sqrt(sampled->variance.mean);

@@ -240,7 +240,12 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
     if (surface.point_cloud)
         best.noise.model = NoiseModel::AlongNormals;
     else
-        best.noise = estimate_noise_direction(usable_y, usable.triangles);
+    {
+        Eigen::VectorXd usable_variance(usable_y.rows());
+        for (Eigen::Index k = 0; k < usable_y.rows(); ++k)
+            usable_variance[k] = best.variance.per_vertex[usable.active_vertex[static_cast<std::size_t>(k)]];
+        best.noise = estimate_noise_direction(usable_y, usable.triangles, &usable_variance);
+    }
     // Noise along one direction is measured along it: along the normals a vertex whose surface
     // that direction grazes shows little of it.
     // Otherwise the clean mesh's own reading is taken out of it (subtract_own_detail: not along

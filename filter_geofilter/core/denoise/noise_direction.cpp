@@ -44,7 +44,7 @@ Eigen::MatrixXd smoothed_vertex_normals(const Points& points, const Triangles& t
     return normal;
 }
 
-NoiseDirection estimate_noise_direction(const Points& points, const Triangles& triangles) {
+NoiseDirection estimate_noise_direction(const Points& points, const Triangles& triangles, const Eigen::VectorXd* variance) {
     const Laplacian umbrella = umbrella_laplacian(triangles, points.rows());
     const Eigen::VectorXd& degree = umbrella.mass;
     const SparseMatrix& k = umbrella.stiffness;
@@ -74,17 +74,21 @@ NoiseDirection estimate_noise_direction(const Points& points, const Triangles& t
     for (int ring = 0; ring < averaging_rings; ++ring)
         parts = (parts + neighbour_sum(parts)).cwiseQuotient((degree.array() + 1.0).matrix().replicate(1, 2));
 
-    std::vector<double> along, across;
-    for (Eigen::Index i = 0; i < points.rows(); ++i)
-        if (used[i]) {
-            along.push_back(parts(i, 0));
-            across.push_back(parts(i, 1));
-        }
+    // The ratio of the parts' low quantiles over the vertices in `where`.
+    const auto tangential_ratio = [&](const std::vector<bool>& where) {
+        std::vector<double> along, across;
+        for (Eigen::Index i = 0; i < points.rows(); ++i)
+            if (where[i]) {
+                along.push_back(parts(i, 0));
+                across.push_back(parts(i, 1));
+            }
+        if (along.empty()) return 0.0;
+        const double normal_part = quantile(along, regular_quantile);
+        return normal_part > 0 ? quantile(across, regular_quantile) / normal_part : 0.0;
+    };
     NoiseDirection out;
-    if (along.empty()) return out;
-    const double normal_part = quantile(along, regular_quantile);
-    if (!(normal_part > 0)) return out;  // no noise along the normals to compare with
-    out.tangential_ratio = quantile(across, regular_quantile) / normal_part;
+    out.tangential_ratio = tangential_ratio(used);
+    if (!(out.tangential_ratio > 0)) return out;  // no noise along the normals to compare with
     out.model = out.tangential_ratio >= isotropic_ratio ? NoiseModel::Isotropic : NoiseModel::AlongNormals;
     Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
     for (Eigen::Index i = 0; i < points.rows(); ++i)
@@ -95,6 +99,18 @@ NoiseDirection estimate_noise_direction(const Points& points, const Triangles& t
         out.direction_share = principal.eigenvalues()[2] / principal.eigenvalues().sum();
         if (out.model == NoiseModel::Isotropic && out.direction_share >= noise_direction_share)
             out.model = NoiseModel::AlongDirection;
+    }
+    if (out.model == NoiseModel::Isotropic && variance) {
+        double sum = 0;
+        int count = 0;
+        for (Eigen::Index i = 0; i < points.rows(); ++i)
+            if (used[i]) sum += (*variance)[i], ++count;
+        std::vector<bool> noisy(used);
+        for (Eigen::Index i = 0; i < points.rows(); ++i)
+            noisy[i] = used[i] && (*variance)[i] >= noisy_vertex_share * sum / count;
+        out.tangential_ratio_where_noisy = tangential_ratio(noisy);
+        if (out.tangential_ratio_where_noisy > 0 && out.tangential_ratio_where_noisy < isotropic_ratio)
+            out.model = NoiseModel::AlongNormals;
     }
     return out;
 }

@@ -22,6 +22,18 @@ const char* noise_model_name(NoiseModel model);
 // the two others together.
 constexpr double noise_direction_share = 2.0 / 3.0;
 
+// Where the noise is (estimate_noise_direction): vertices whose noise variance is at least
+// this share of the mean. On a scan noisy in patches, the most regular part of the whole mesh
+// lies where there is no noise, the ratio there is the clean sampling's over nothing, and
+// noise along the normals was read as noise in every direction (the bunny noisy on one half:
+// 124.7); the lowpass's sideways pull then slid the clean half's vertices by 0.19 mean edge
+// lengths. Chosen on the scan-patchy family's tuning draws (experiments/generalize_denoise)
+// and on scans noisy on one half: from 0.25 to 0.5 every draw reads the same; at 0.1 the man
+// noisy on one half is read in every direction again, at 1 a fandisk with patches of noise in
+// random directions is read along the normals (2.13 -> 3.99e-3 RMS). 0.35 lies in the middle
+// of that range (in ratio).
+constexpr double noisy_vertex_share = 0.35;
+
 struct NoiseDirection {
     NoiseModel model = NoiseModel::AlongNormals;
     // In the most regular part of the mesh: the tangential part of the umbrella offsets
@@ -31,6 +43,8 @@ struct NoiseDirection {
     // 1/3 for noise in every direction, 1 for noise along one.
     Eigen::Vector3d direction = Eigen::Vector3d::Zero();
     double direction_share = 0;
+    // The tangential ratio again where the noise is (below), when that was read too (0: not read).
+    double tangential_ratio_where_noisy = 0;
 };
 
 // Noise that is independent from vertex to vertex and of variance s^2 along each axis it
@@ -53,7 +67,16 @@ struct NoiseDirection {
 // over the mesh has one large eigenvalue; noise in every direction spreads it evenly (each a
 // third), and noise along the normals of a closed surface spreads it over the normals'
 // directions. Along one direction from a principal share of noise_direction_share up.
-NoiseDirection estimate_noise_direction(const Points& points, const Triangles& triangles);
+// Noise that varies across the mesh (loud in patches, none between them) needs one more
+// look: the most regular part of the whole mesh may be where there is no noise at all, and
+// the clean sampling's tangential part over no normal part reads as noise in every direction.
+// Given the noise's per-vertex variance along the normals (`variance`, estimate_noise_variance),
+// noise read in every direction, and not along one, is read again where the noise is
+// (a variance of at least a share of the mean): below a ratio of 2 there, along the normals.
+// Noise along one direction is not read again: its variance along the normals is largest
+// where it meets the surface head on, which would read it as along the normals.
+NoiseDirection estimate_noise_direction(const Points& points, const Triangles& triangles,
+                                        const Eigen::VectorXd* variance = nullptr);
 
 // Unit vertex normals averaged over 3 rings of neighbours: the directions to split the
 // noise along, without the noise's own tilt of each face (zero where a vertex has none).
