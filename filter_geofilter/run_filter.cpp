@@ -1,4 +1,5 @@
 #include "run_filter.h"
+#include "core/mesh/seams.h"
 
 #include "core/denoise/bump_pattern.h"
 #include "run_region.h"
@@ -693,26 +694,70 @@ CloudSurface as_surface_for_filtering(const Points& points, const std::vector<in
     return s;
 }
 
+namespace {
+
+RunOutput run_on_mesh(const FilterSpec& spec, const ParameterValues& values, const RunInput& input) {
+    // Denoise reads the surface's normals (the noise along them, a bump's height, the volume a
+    // closed part encloses); faces wound against their neighbours would cancel them. Only the
+    // positions are written back: the mesh's faces stay as they are.
+    if (spec.kind == FilterKind::Denoise) {
+        const ConsistentOrientation oriented = orient_consistently(input.triangles, input.points.rows());
+        if (oriented.turned > 0) {
+            RunInput on_oriented{input.points, oriented.triangles, input.selected_faces, input.progress,
+                                 input.vertex_quality, input.cache, input.external_solver,
+                                 input.complex_factorization, input.selected_vertices};
+            RunOutput out = filter_surface(spec, values, on_oriented, nullptr);
+            out.log.insert(out.log.begin(),
+                           "faces: " + std::to_string(oriented.turned) + " of " + std::to_string(input.triangles.rows()) +
+                               " are wound against their neighbours; Denoise took them turned, so that the normals"
+                               " and enclosed volumes are the surface's (the mesh's faces are left as they are)");
+            return out;
+        }
+    }
+    return filter_surface(spec, values, input, nullptr);
+}
+
+// The mesh with its seams welded (weld_seams): each seam's first vertex stands for its copies,
+// which leave the mesh the filter sees, and the copies take its result.
+RunOutput run_on_welded(const FilterSpec& spec, const ParameterValues& values, const RunInput& input, const SeamWeld& seams) {
+    const auto n = static_cast<std::size_t>(input.points.rows());
+    std::vector<int> kept(n, -1);
+    int count = 0;
+    for (std::size_t v = 0; v < n; ++v)
+        if (seams.representative[v] == static_cast<int>(v)) kept[v] = count++;
+    Points points(count, 3);
+    std::vector<double> quality;
+    for (std::size_t v = 0; v < n; ++v)
+        if (kept[v] >= 0) {
+            points.row(kept[v]) = input.points.row(static_cast<Eigen::Index>(v));
+            if (input.vertex_quality && input.vertex_quality->size() == n) quality.push_back((*input.vertex_quality)[v]);
+        }
+    Triangles triangles = seams.triangles;
+    for (Eigen::Index f = 0; f < triangles.rows(); ++f)
+        for (int k = 0; k < 3; ++k) triangles(f, k) = kept[static_cast<std::size_t>(triangles(f, k))];
+    const RunInput on_welded{points, triangles, input.selected_faces, input.progress,
+                             input.vertex_quality && input.vertex_quality->size() == n ? &quality : input.vertex_quality,
+                             input.cache, input.external_solver, input.complex_factorization, input.selected_vertices};
+    RunOutput out = run_on_mesh(spec, values, on_welded);
+    if (out.points.rows() == count) {
+        Points all(input.points.rows(), 3);
+        for (std::size_t v = 0; v < n; ++v)
+            all.row(static_cast<Eigen::Index>(v)) = out.points.row(kept[static_cast<std::size_t>(seams.representative[v])]);
+        out.points = std::move(all);
+    }
+    out.log.insert(out.log.begin(), "seams: " + std::to_string(seams.welded) +
+                                        " vertices on open edges stand exactly where another does (a seam the file split, by"
+                                        " normals, texture coordinates or part): filtered as one surface, so the seams stay"
+                                        " closed, and each copy written back with the same position");
+    return out;
+}
+
+} // namespace
+
 RunOutput run_filter(const FilterSpec& spec, const ParameterValues& values, const RunInput& input) {
     if (!is_point_cloud(input.points, input.triangles)) {
-        // Denoise reads the surface's normals (the noise along them, a bump's height, the volume a
-        // closed part encloses); faces wound against their neighbours would cancel them. Only the
-        // positions are written back: the mesh's faces stay as they are.
-        if (spec.kind == FilterKind::Denoise) {
-            const ConsistentOrientation oriented = orient_consistently(input.triangles, input.points.rows());
-            if (oriented.turned > 0) {
-                RunInput on_oriented{input.points, oriented.triangles, input.selected_faces, input.progress,
-                                     input.vertex_quality, input.cache, input.external_solver,
-                                     input.complex_factorization, input.selected_vertices};
-                RunOutput out = filter_surface(spec, values, on_oriented, nullptr);
-                out.log.insert(out.log.begin(),
-                               "faces: " + std::to_string(oriented.turned) + " of " + std::to_string(input.triangles.rows()) +
-                                   " are wound against their neighbours; Denoise took them turned, so that the normals"
-                                   " and enclosed volumes are the surface's (the mesh's faces are left as they are)");
-                return out;
-            }
-        }
-        return filter_surface(spec, values, input, nullptr);
+        const SeamWeld seams = weld_seams(input.points, input.triangles);
+        return seams.welded ? run_on_welded(spec, values, input, seams) : run_on_mesh(spec, values, input);
     }
     if (!input.selected_faces.empty())
         throw Error("the input is a point cloud (points and no faces), yet " + std::to_string(input.selected_faces.size()) +
