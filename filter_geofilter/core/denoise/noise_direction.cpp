@@ -89,7 +89,6 @@ NoiseDirection estimate_noise_direction(const Points& points, const Triangles& t
     NoiseDirection out;
     out.tangential_ratio = tangential_ratio(used);
     if (!(out.tangential_ratio > 0)) return out;  // no noise along the normals to compare with
-    out.model = out.tangential_ratio >= isotropic_ratio ? NoiseModel::Isotropic : NoiseModel::AlongNormals;
     Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
     for (Eigen::Index i = 0; i < points.rows(); ++i)
         if (used[i]) covariance += offset.row(i).transpose() * offset.row(i);
@@ -97,10 +96,10 @@ NoiseDirection estimate_noise_direction(const Points& points, const Triangles& t
     if (principal.info() == Eigen::Success && principal.eigenvalues().sum() > 0) {
         out.direction = principal.eigenvectors().col(2);
         out.direction_share = principal.eigenvalues()[2] / principal.eigenvalues().sum();
-        if (out.model == NoiseModel::Isotropic && out.direction_share >= noise_direction_share)
-            out.model = NoiseModel::AlongDirection;
     }
-    if (out.model == NoiseModel::Isotropic && variance) {
+    double ratio = out.tangential_ratio;
+    const bool along_one_direction = ratio >= isotropic_ratio && out.direction_share >= noise_direction_share;
+    if (!along_one_direction && variance) {
         double sum = 0;
         int count = 0;
         for (Eigen::Index i = 0; i < points.rows(); ++i)
@@ -109,9 +108,11 @@ NoiseDirection estimate_noise_direction(const Points& points, const Triangles& t
         for (Eigen::Index i = 0; i < points.rows(); ++i)
             noisy[i] = used[i] && (*variance)[i] >= noisy_vertex_share * sum / count;
         out.tangential_ratio_where_noisy = tangential_ratio(noisy);
-        if (out.tangential_ratio_where_noisy > 0 && out.tangential_ratio_where_noisy < isotropic_ratio)
-            out.model = NoiseModel::AlongNormals;
+        if (out.tangential_ratio_where_noisy > 0) ratio = out.tangential_ratio_where_noisy;
     }
+    out.model = ratio < isotropic_ratio                                ? NoiseModel::AlongNormals
+                : out.direction_share >= noise_direction_share ? NoiseModel::AlongDirection
+                                                                : NoiseModel::Isotropic;
     return out;
 }
 

@@ -69,12 +69,12 @@ struct NoiseDirection {
 // directions. Along one direction from a principal share of noise_direction_share up.
 // Noise that varies across the mesh (loud in patches, none between them) needs one more
 // look: the most regular part of the whole mesh may be where there is no noise at all, and
-// the clean sampling's tangential part over no normal part reads as noise in every direction.
-// Given the noise's per-vertex variance along the normals (`variance`, estimate_noise_variance),
-// noise read in every direction, and not along one, is read again where the noise is
-// (a variance of at least a share of the mean): below a ratio of 2 there, along the normals.
-// Noise along one direction is not read again: its variance along the normals is largest
-// where it meets the surface head on, which would read it as along the normals.
+// there the split is the clean sampling's, either way. Given the noise's per-vertex variance
+// along the normals (`variance`, estimate_noise_variance), the ratio that tells along the
+// normals from every direction is read again where the noise is (a variance of at least
+// noisy_vertex_share of the mean), unless the whole mesh reads as noise along one direction:
+// that noise's variance along the normals is largest where the view meets the surface head
+// on, which reads it as along the normals.
 NoiseDirection estimate_noise_direction(const Points& points, const Triangles& triangles,
                                         const Eigen::VectorXd* variance = nullptr);
 

@@ -18,9 +18,9 @@ struct SeamWeld {
     int welded = 0;                  // copies replaced
 };
 
-// Vertices on an open boundary (an edge of one face) at bit-identical positions are one
+// Vertices on an open boundary (an edge of one face) at exactly equal positions are one
 // vertex split by a seam: each is replaced by the lowest-numbered of them. Vertices inside the
-// surface, or at positions that only nearly match, are left apart: bit-identical copies on a
+// surface, or at positions that only nearly match, are left apart: exact copies on a
 // boundary are what a file's split leaves, while a near match may be two parts that only
 // touch. Faces with an index out of range or a non-finite corner weld nothing (the filters
 // refuse them with their own message).
