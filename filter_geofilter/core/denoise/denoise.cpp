@@ -237,10 +237,9 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
     Points usable_y = usable.points;
     for (Eigen::Index k = 0; k < usable_y.rows(); ++k) usable_y.row(k) = y.row(usable.active_vertex[static_cast<std::size_t>(k)]);
     // A cloud's place along the surface is its sampling (DenoiseSurface).
-    if (surface.point_cloud)
+    if (surface.point_cloud) {
         best.noise.model = NoiseModel::AlongNormals;
-    else
-    {
+    } else {
         Eigen::VectorXd usable_variance(usable_y.rows());
         for (Eigen::Index k = 0; k < usable_y.rows(); ++k)
             usable_variance[k] = best.variance.per_vertex[usable.active_vertex[static_cast<std::size_t>(k)]];

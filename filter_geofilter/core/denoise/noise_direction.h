@@ -44,7 +44,8 @@ struct NoiseDirection {
     // 1/3 for noise in every direction, 1 for noise along one.
     Eigen::Vector3d direction = Eigen::Vector3d::Zero();
     double direction_share = 0;
-    // The tangential ratio again where the noise is (below), when that was read too (0: not read).
+    // The tangential ratio again where the noise is (noisy_vertex_share), which then decides
+    // (0: not read: no variance given, or the noise is along one direction).
     double tangential_ratio_where_noisy = 0;
 };
 
