@@ -40,6 +40,25 @@ double expected_order_square(int m, int k) {
     return sum * step / 3;
 }
 
+// Vertices whose ring of neighbours lies in one plane with them, to within `tolerance`: the
+// flat faces of a clean CAD part. Noise of any size that matters leaves no ring that flat,
+// so these vertices carry none, whatever the finest band's lowpass drags into them from the
+// part's edges (which on a coarse part reaches every vertex's neighbourhood).
+std::vector<bool> planar_rings(const Points& points, const Triangles& triangles, const VertexNeighbours& nb,
+                               double tolerance) {
+    const Eigen::MatrixXd normal = vertex_normals(points, triangles);
+    std::vector<bool> planar(static_cast<std::size_t>(points.rows()), false);
+    for (Eigen::Index i = 0; i < points.rows(); ++i) {
+        // Three points are always in a plane: a vertex of one face (two neighbours) says nothing.
+        if (normal.row(i).squaredNorm() == 0 || nb.start[i + 1] - nb.start[i] < 3) continue;
+        bool flat = true;
+        for (int j = nb.start[i]; j < nb.start[i + 1] && flat; ++j)
+            flat = std::abs((points.row(nb.index[j]) - points.row(i)).dot(normal.row(i))) <= tolerance;
+        planar[static_cast<std::size_t>(i)] = flat;
+    }
+    return planar;
+}
+
 } // namespace
 
 NoiseVariance estimate_noise_variance(const Points& points, const Triangles& triangles, const FilterOptions& options,
@@ -94,6 +113,7 @@ NoiseVariance estimate_noise_variance(const Points& points, const Triangles& tri
     // vertices in rings of the vertex graph), over what it is expected to be for Gaussian
     // noise of unit variance.
     const VertexNeighbours nb = vertex_neighbours(triangles, points.rows());
+    const std::vector<bool> planar = planar_rings(points, triangles, nb, planar_ring_tolerance * size);
     out.per_vertex = Eigen::VectorXd::Zero(points.rows());
     // The neighbourhoods are independent: blocks of vertices go to the machine's threads, each
     // with buffers of its own, and write the middle value and the count of each.
@@ -111,7 +131,8 @@ NoiseVariance estimate_noise_variance(const Points& points, const Triangles& tri
             while (!ring.empty() && squared.size() < static_cast<std::size_t>(noise_neighbourhood_vertices)) {
                 next.clear();
                 for (int v : ring) {
-                    if (has_normal[static_cast<std::size_t>(v)]) squared.push_back(residual[v] * residual[v]);
+                    if (has_normal[static_cast<std::size_t>(v)])
+                        squared.push_back(planar[static_cast<std::size_t>(v)] ? 0.0 : residual[v] * residual[v]);
                     for (int j = nb.start[v]; j < nb.start[v + 1]; ++j) {
                         const int w = nb.index[j];
                         if (mark[static_cast<std::size_t>(w)] == i) continue;
@@ -147,7 +168,7 @@ NoiseVariance estimate_noise_variance(const Points& points, const Triangles& tri
     // A sharp feature (a corner, a toe's tip) bends its neighbours' residuals too; an impulse
     // stands out alone (noise_variance.h).
     const auto stands_out = [&](Eigen::Index i) {
-        return has_normal[static_cast<std::size_t>(i)] &&
+        return has_normal[static_cast<std::size_t>(i)] && out.per_vertex[i] > 0 &&
                residual[i] * residual[i] > denoise_impulse_sigmas * denoise_impulse_sigmas * out.per_vertex[i] * removed;
     };
     // Per vertex: its neighbour of the largest |residual|, and the largest |residual| of the others.

@@ -55,6 +55,11 @@ namespace geofilter {
 // 64 on scan debris (the man with holes: 11.2 against 14.9 degrees, 188 against 633 faces
 // folded). 64 is kept for the smaller spread and the fewer folds.
 constexpr int noise_neighbourhood_vertices = 64;
+// A vertex whose neighbours all lie within this fraction of the diagonal of the plane through
+// it along its normal reads no noise (a flat face of a clean CAD part): far below any noise
+// that matters (a scan of 1M vertices has edges near 1e-3 of its diagonal), above the
+// rounding of coordinates stored in single precision (6e-8 of their size).
+constexpr double planar_ring_tolerance = 1e-6;
 constexpr double denoise_impulse_sigmas = 6.0;
 // Twice, not once: with "farther than every neighbour" the corners and edges of a nearly
 // clean cube (noise 0.001 edge lengths) were taken for outliers round after round and worn
