@@ -26,6 +26,10 @@ namespace geofilter::detail {
 // 0.09-0.13 measured in the same runs for an iteration of CG on the real pair, which made two
 // (0.07 taken); their count from shifted_pair_iterations. A solver that has timed its own
 // steps passes those instead.
+// The shortest factorisation whose time stands for the solver's costs (below it, the
+// default ratios of PairSolveCosts decide): 50 ms, a mesh of some 20k vertices.
+constexpr double least_timed_factorization_seconds = 0.05;
+
 struct PairSolveCosts {
     double real_factorization = 1.0;
     double complex_factorization = 1.6;
