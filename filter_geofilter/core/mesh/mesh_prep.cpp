@@ -1,4 +1,5 @@
 #include "core/mesh/mesh_prep.h"
+#include "core/mesh/seams.h"
 
 #include <algorithm>
 #include <cmath>
@@ -66,16 +67,9 @@ PreparedMesh prepare_mesh(const Points& points, const Triangles& triangles) {
 
     // Bit-identical positions on different vertices cut the surface into pieces that the
     // filter then treats separately (an unwelded STL, a split seam): say so.
-    std::vector<int> order(out.active_vertex.size());
-    for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
-    auto less = [&](int a, int b) {
-        for (int k = 0; k < 3; ++k)
-            if (out.points(a, k) != out.points(b, k)) return out.points(a, k) < out.points(b, k);
-        return false;
-    };
-    std::sort(order.begin(), order.end(), less);
+    const std::vector<int> order = order_by_position(out.points);
     for (size_t i = 1; i < order.size(); ++i)
-        if (!less(order[i - 1], order[i])) ++out.duplicated_vertices;
+        if (out.points.row(order[i - 1]) == out.points.row(order[i])) ++out.duplicated_vertices;
     if (out.duplicated_vertices)
         out.warnings.push_back(std::to_string(out.duplicated_vertices) +
                                " vertex/vertices duplicate the position of another: the surface is cut there and each"

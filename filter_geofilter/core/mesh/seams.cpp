@@ -6,6 +6,17 @@
 
 namespace geofilter {
 
+std::vector<int> order_by_position(const Points& points) {
+    std::vector<int> order(static_cast<std::size_t>(points.rows()));
+    std::iota(order.begin(), order.end(), 0);
+    std::sort(order.begin(), order.end(), [&](int a, int b) {
+        for (int k = 0; k < 3; ++k)
+            if (points(a, k) != points(b, k)) return points(a, k) < points(b, k);
+        return a < b;
+    });
+    return order;
+}
+
 SeamWeld weld_seams(const Points& points, const Triangles& triangles) {
     SeamWeld out{triangles, std::vector<int>(static_cast<std::size_t>(points.rows())), 0};
     std::iota(out.representative.begin(), out.representative.end(), 0);
@@ -13,14 +24,7 @@ SeamWeld weld_seams(const Points& points, const Triangles& triangles) {
         return out;
     // Positions first: most meshes have no two vertices in one place, and then the edges
     // (a sort of three per face) are never looked at.
-    std::vector<int> order(static_cast<std::size_t>(points.rows()));
-    std::iota(order.begin(), order.end(), 0);
-    const auto before = [&](int a, int b) {
-        for (int k = 0; k < 3; ++k)
-            if (points(a, k) != points(b, k)) return points(a, k) < points(b, k);
-        return a < b;
-    };
-    std::sort(order.begin(), order.end(), before);
+    const std::vector<int> order = order_by_position(points);
     const auto same_place = [&](std::size_t i, std::size_t j) { return points.row(order[i]) == points.row(order[j]); };
     bool any = false;
     for (std::size_t i = 1; i < order.size() && !any; ++i) any = same_place(i - 1, i);

@@ -18,6 +18,10 @@ struct SeamWeld {
     int welded = 0;                  // copies replaced
 };
 
+// The vertices' indices sorted by position (x, then y, then z; ties by index): vertices at
+// the same place end up side by side.
+std::vector<int> order_by_position(const Points& points);
+
 // Vertices on an open boundary (an edge of one face) at exactly equal positions are one
 // vertex split by a seam: each is replaced by the lowest-numbered of them. Vertices inside the
 // surface, or at positions that only nearly match, are left apart: exact copies on a

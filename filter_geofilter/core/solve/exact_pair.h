@@ -17,6 +17,10 @@
 
 namespace geofilter::detail {
 
+// The shortest factorisation whose time stands for the solver's costs (below it, the
+// default ratios of PairSolveCosts decide): 50 ms, a mesh of some 20k vertices.
+constexpr double least_timed_factorization_seconds = 0.05;
+
 // What the two ways of solving a pair cost, in any one unit. The defaults are ratios to one
 // real factorisation of Kt + c I: the exact pair, a single-precision complex LDL^T refined in
 // double (what the adapters and geofilter-mpi factorise), 1.56-1.66 with its solves (1.6
@@ -26,10 +30,6 @@ namespace geofilter::detail {
 // 0.09-0.13 measured in the same runs for an iteration of CG on the real pair, which made two
 // (0.07 taken); their count from shifted_pair_iterations. A solver that has timed its own
 // steps passes those instead.
-// The shortest factorisation whose time stands for the solver's costs (below it, the
-// default ratios of PairSolveCosts decide): 50 ms, a mesh of some 20k vertices.
-constexpr double least_timed_factorization_seconds = 0.05;
-
 struct PairSolveCosts {
     double real_factorization = 1.0;
     double complex_factorization = 1.6;

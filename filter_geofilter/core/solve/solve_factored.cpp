@@ -183,27 +183,20 @@ private:
     // 11.2 and 19.1 ms against CG's 12.0, and the choice flipped from run to run.)
     PairSolveCosts measured_costs() const {
         PairSolveCosts costs;
+        costs.last_pair_iterations = state_.last_pair_iterations;
+        costs.last_pair_rate = state_.last_pair_rate;
+        costs.session = problem_.factor_slot != nullptr;
         const double ratio = costs.complex_factorization;
         const double timed = state_.seconds_per_factorization > 0 ? state_.seconds_per_factorization
                                                                   : state_.exact.seconds_per_factorization / ratio;
-        if (timed < least_timed_factorization_seconds) {
-            costs.last_pair_iterations = state_.last_pair_iterations;
-            costs.last_pair_rate = state_.last_pair_rate;
-            costs.session = problem_.factor_slot != nullptr;
-            return costs;
-        }
-        if (state_.seconds_per_factorization > 0) costs.real_factorization = state_.seconds_per_factorization;
-        else if (state_.exact.seconds_per_factorization > 0)
-            costs.real_factorization = state_.exact.seconds_per_factorization / ratio;
+        if (timed < least_timed_factorization_seconds) return costs;
+        costs.real_factorization = timed;
         costs.complex_factorization = state_.exact.seconds_per_factorization > 0
                                           ? state_.exact.seconds_per_factorization
                                           : ratio * costs.real_factorization;
         costs.pair_iteration = state_.seconds_per_factorization > 0 && state_.seconds_per_pair_iteration > 0
                                    ? state_.seconds_per_pair_iteration
                                    : costs.pair_iteration * costs.real_factorization;
-        costs.last_pair_iterations = state_.last_pair_iterations;
-        costs.last_pair_rate = state_.last_pair_rate;
-        costs.session = problem_.factor_slot != nullptr;
         return costs;
     }
 
