@@ -70,13 +70,17 @@ class DenoiseTest(unittest.TestCase):
         rms = lambda p: np.sqrt(np.mean((np.linalg.norm(p, axis=1) - 1) ** 2))
         self.assertLess(rms(v), 0.3 * rms(bumpy))
 
-    def test_denoise_of_a_selection_that_is_no_bump_leaves_the_mesh(self):
-        # A cap of a bare sphere: nothing stands out of the surface, so nothing is removed.
+    def test_denoise_of_a_selection_that_is_no_bump_removes_nothing_at_its_size(self):
+        # A cap of a bare sphere: nothing stands out of the surface, so nothing is removed at
+        # the cap's size; the sampling-noise rule that runs instead finds next to no noise on
+        # the clean sphere (measured: vertices moved by at most 3e-4 of its radius).
         steps = [h.sphere(1.0, 4), h.select_faces("z0 > 0.95 && z1 > 0.95 && z2 > 0.95")]
         _, before = self.run_steps(steps, "before")
         run, v = self.run_steps(steps + [h.geofilter("GeoFilter: Denoise", useSelection=True)], "selected")
-        self.assertIn("the mesh was left as it was", "\n".join(run.log), run.describe())
-        np.testing.assert_array_equal(v, before)
+        log = "\n".join(run.log)
+        self.assertIn("nothing at this size was removed", log, run.describe())
+        self.assertIn("per-vertex sampling noise is removed instead", log, run.describe())
+        self.assertLess(np.abs(v - before).max(), 1e-3, run.describe())
 
     def test_denoise_without_selection_picks_its_lowpass_by_its_estimated_risk(self):
         steps = [h.sphere(1.0, 4), h.geofilter("GeoFilter: Denoise", useSelection=False)]
