@@ -10,6 +10,8 @@ Feature scale (one bump of a pattern selected, the truth is the surface without 
   torus-dents      torus with large bumps, spherical-cap dents
   scan-plateau     a smoothed scan, plateau bumps and dents of both signs
   patch-grooves    an open wavy patch (with a boundary), ridges and grooves
+  noisy-bumps      a case of one of the five above, with sampling noise on top (0.1-0.4 mean edge
+                   lengths, along the normals or in random directions): a scan of a patterned surface
   In each: radii spread +-30 % about the pattern's, coverage 5-40 % (overlaps allowed), heights
   0.15-0.3 radii; the user selects one element of the pattern the way Conditional Face
   Selection does, centred up to a quarter radius off, 1-1.6 radii wide.
@@ -241,6 +243,8 @@ def user_selection(bumpy, f, centre_index, radius, normal, rng):
 
 
 def feature_case(family, seed):
+    if family == "noisy-bumps":
+        return noisy_feature_case(seed)
     rng = np.random.default_rng([20261205, sum(map(ord, family)), seed])
     coverage = rng.uniform(0.05, 0.40)
     if family in ("sphere-gauss", "sphere-mixed"):
@@ -274,6 +278,23 @@ def feature_case(family, seed):
     name = (f"{family} #{seed}: {len(placed)} {profile} {'bumps' if signs == [1] else 'dents' if signs == [-1] else 'bumps and dents'}"
             f" r={radius:.3g}, coverage {100 * coverage:.0f} %, a {'bump' if sign > 0 else 'dent'} selected")
     return dict(name=name, family=family, seed=seed, truth=truth, input=bumpy, f=f, selection=(centre, reach, faces))
+
+
+def noisy_feature_case(seed):
+    """A case of another feature family (by seed) with sampling noise on top: a scan of a
+    patterned surface. The truth is still the surface without the pattern, and without noise."""
+    base = FEATURE[seed % (len(FEATURE) - 1)]
+    case = feature_case(base, seed)
+    rng = np.random.default_rng([20261205, sum(map(ord, "noisy-bumps")), seed])
+    v, f = case["input"], case["f"]
+    level, direction = rng.uniform(0.1, 0.4), ["normal", "random"][rng.integers(2)]
+    step = level * c.mean_edge_length(v, f)
+    noise = rng.standard_normal(v.shape) if direction == "random" else rng.standard_normal(len(v))[:, None] * c.vertex_normals(v, f)
+    case["input"] = v + step * noise
+    case["name"] = (case["name"].replace(base, "noisy-bumps", 1) +
+                    f", sigma {level:.2f}h {'along the normals' if direction == 'normal' else 'in random directions'}")
+    case["family"] = "noisy-bumps"
+    return case
 
 
 def with_holes_and_debris(v, f, rng):
@@ -388,7 +409,7 @@ def noise_case(family, seed):
     return dict(name=f"{family} #{seed}: {label}", family=family, seed=seed, truth=v, input=v + noise, f=f, selection=None)
 
 
-FEATURE = ["sphere-gauss", "sphere-mixed", "torus-dents", "scan-plateau", "patch-grooves"]
+FEATURE = ["sphere-gauss", "sphere-mixed", "torus-dents", "scan-plateau", "patch-grooves", "noisy-bumps"]
 NOISE = ["scan-normal", "scan-random", "scan-depth", "scan-patchy", "scan-outliers", "anisotropic", "holes-debris", "cad",
          "scan-faint"]
 
