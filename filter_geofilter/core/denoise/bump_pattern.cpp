@@ -87,10 +87,6 @@ SparseMatrix profiles(const PointGrid& grid, const Points& base, const std::vect
     return phi;
 }
 
-// Rounds of the active-set search below: clean patterns converge in 1-13, while a noisy
-// surface's many peaks can need more than a thousand (it then stops with the best fit so far).
-constexpr int nnls_max_rounds = 100;
-
 // Non-negative least squares on the normal equations gram * a = rhs (gram symmetric positive
 // semi-definite), by active sets: the unknowns still free are solved for exactly (sparse
 // Cholesky), those that come out negative are held at zero, and a held one whose gradient
@@ -98,7 +94,6 @@ constexpr int nnls_max_rounds = 100;
 // height at once mostly adds a smooth field, which the lowpass keeps and d does not see, so
 // that direction is weakly determined and coordinate descent, stopped early, left the heights
 // ~15 % low. `free_last`: the last unknown may take either sign.
-
 Eigen::VectorXd non_negative_solve(const SparseMatrix& gram, const Eigen::VectorXd& rhs, bool free_last = false) {
     const Eigen::Index n = rhs.size();
     Eigen::VectorXd a = Eigen::VectorXd::Zero(n);
@@ -107,22 +102,7 @@ Eigen::VectorXd non_negative_solve(const SparseMatrix& gram, const Eigen::Vector
     const double largest = std::max(diagonal.maxCoeff(), 1e-300);
     std::vector<bool> free(static_cast<size_t>(n));
     for (Eigen::Index i = 0; i < n; ++i) free[i] = diagonal[i] > 1e-12 * largest;
-    const auto feasible = [&](Eigen::VectorXd x) {
-        const double last = x[n - 1];
-        x = x.cwiseMax(0.0);
-        if (free_last) x[n - 1] = last;
-        return x;
-    };
-    // Stopped before it converges, the last free set's exact solve, clipped, can lie far from
-    // the optimum: on a noisy scan of plateau bumps and dents (1400 peaks, 100 rounds) its
-    // heights took the scan 6.5x farther from its truth than the input. So the clipped iterate
-    // that fits best is kept (no heights at all fit as well as nothing), and it is returned
-    // unless the search converged, where the last one is the optimum.
-    const auto objective = [&](const Eigen::VectorXd& x) { return 0.5 * x.dot(gram * x) - rhs.dot(x); };
-    Eigen::VectorXd best = Eigen::VectorXd::Zero(n);
-    double best_objective = 0;
-    bool converged = false;
-    for (int round = 0; round < nnls_max_rounds; ++round) {
+    for (int round = 0; round < 100; ++round) {
         std::vector<Eigen::Index> at(static_cast<size_t>(n), -1), index;
         for (Eigen::Index i = 0; i < n; ++i)
             if (free[i]) {
@@ -145,10 +125,6 @@ Eigen::VectorXd non_negative_solve(const SparseMatrix& gram, const Eigen::Vector
             const Eigen::VectorXd x = factor.solve(b);
             for (size_t k = 0; k < index.size(); ++k) a[index[k]] = x[static_cast<Eigen::Index>(k)];
         }
-        if (const Eigen::VectorXd clipped = feasible(a); objective(clipped) < best_objective) {
-            best_objective = objective(clipped);
-            best = clipped;
-        }
         bool changed = false;
         for (Eigen::Index i = 0; i < n - (free_last ? 1 : 0); ++i)
             if (free[i] && a[i] < 0) {
@@ -163,13 +139,16 @@ Eigen::VectorXd non_negative_solve(const SparseMatrix& gram, const Eigen::Vector
             if (!free[i] && diagonal[i] > 1e-12 * largest && gradient[i] > 1e-9 * std::sqrt(diagonal[i] * largest) &&
                 (grow < 0 || gradient[i] > gradient[grow]))
                 grow = i;
-        if (grow < 0) {
-            converged = true;
-            break;
-        }
+        if (grow < 0) break;
         free[grow] = true;
     }
-    return converged ? feasible(a) : best;
+    if (free_last) {
+        const double last = a[n - 1];
+        a = a.cwiseMax(0.0);
+        a[n - 1] = last;
+        return a;
+    }
+    return a.cwiseMax(0.0);
 }
 
 // How far the selection stands above the surface around it, in d: the area-weighted mean over
