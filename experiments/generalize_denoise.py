@@ -283,7 +283,8 @@ def feature_case(family, seed):
 def noisy_feature_case(seed):
     """A case of another feature family (by seed) with sampling noise on top: a scan of a
     patterned surface. The truth is still the surface without the pattern, and without noise."""
-    base = FEATURE[seed % (len(FEATURE) - 1)]
+    bases = [family for family in FEATURE if family != "noisy-bumps"]
+    base = bases[seed % len(bases)]
     case = feature_case(base, seed)
     rng = np.random.default_rng([20261205, sum(map(ord, "noisy-bumps")), seed])
     v, f = case["input"], case["f"]

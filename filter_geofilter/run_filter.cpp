@@ -507,7 +507,10 @@ RunOutput filter_surface(const FilterSpec& spec, const ParameterValues& given, c
             return;
         }
         out.points = std::move(sampled->points);
+        // The run's report is the chosen lowpass's; warnings already given (the bump path's) stay.
+        std::vector<std::string> warnings = std::move(out.report.warnings);
         out.report = sampled->report;
+        out.report.warnings.insert(out.report.warnings.begin(), warnings.begin(), warnings.end());
         if (const auto& m = sampled->normal_motion)
             out.log.push_back("motion along the normals only (the noise looks along them): " +
                               std::to_string(m->vertices_projected) + " vertices kept the lowpass's motion across the surface and not its sideways drift; " +
@@ -640,10 +643,8 @@ RunOutput filter_surface(const FilterSpec& spec, const ParameterValues& given, c
             // on a smoothed scan with plateau bumps and noise of 0.3 mean edge lengths along the
             // normals, the input's 1.997e-3 RMS from its truth, against 1.652e-3 so.
             if (bump.outcome == SelectedBumpOutcome::Reshapes || bump.outcome == SelectedBumpOutcome::Unchanged) {
-                const std::vector<std::string> warnings = out.report.warnings;
                 sampling_why = "nothing was removed at the selected bump's size, so per-vertex sampling noise is removed instead";
                 sampling_rule();
-                out.report.warnings.insert(out.report.warnings.begin(), warnings.begin(), warnings.end());
             }
         }
     } else {
