@@ -639,6 +639,23 @@ RunOutput filter_surface(const FilterSpec& spec, const ParameterValues& given, c
             }
             }
             out.points = bump.points;
+            if (bump.outcome == SelectedBumpOutcome::PatternRemoved || bump.outcome == SelectedBumpOutcome::FlatLowpass) {
+                const SamplingDenoise across = denoise_sampling_noise(
+                    input.points, input.triangles, order_of(spec, values),
+                    DenoiseSurface{operator_from_values(spec, values, false), false}, sampling_options);
+                const std::string read = std::string("the sampling-noise rule reads the noise ") +
+                                         noise_model_name(across.noise.model) + " (tangential / normal part " +
+                                         format_number(across.noise.tangential_ratio) + ")";
+                if (across.noise.model != NoiseModel::AlongNormals && !across.input_kept) {
+                    out.points = add_motion_across_surface(out.points, input.points, across.points, input.triangles);
+                    out.log.push_back("noise across the surface: " + read + ", so the vertices also took its lowpass's motion"
+                                      " across the surface (" + across.design.origin + "); along the normals they kept the"
+                                      " selected bump's path");
+                } else {
+                    out.log.push_back("noise across the surface: none to take (" + read +
+                                      (across.input_kept ? ", and no lowpass of it scored below leaving the mesh as it is)" : ")"));
+                }
+            }
             // Nothing removed at the bump's size still leaves the noise a user asks Denoise for:
             // on a smoothed scan with plateau bumps and noise of 0.3 mean edge lengths along the
             // normals, the input's 1.997e-3 RMS from its truth, against 1.652e-3 so.

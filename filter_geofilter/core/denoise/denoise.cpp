@@ -130,6 +130,17 @@ SelectedBumpDenoise denoise_selected_bump(const Points& input, const Points& low
     return out;
 }
 
+Points add_motion_across_surface(const Points& denoised, const Points& input, const Points& sampled,
+                                 const Triangles& triangles) {
+    const Eigen::MatrixXd normal = vertex_normals(denoised, triangles);
+    Points out = denoised;
+    for (Eigen::Index v = 0; v < out.rows(); ++v) {
+        const Eigen::RowVector3d moved = sampled.row(v) - input.row(v);
+        out.row(v) += moved - moved.dot(normal.row(v)) * normal.row(v);
+    }
+    return out;
+}
+
 std::vector<DenoiseDesign> denoise_sampling_candidates(double mean_edge_length, int order, const DenoiseSurface& surface) {
     const std::optional<Operator>& op = surface.chosen;
     if (!(mean_edge_length > 0) || !std::isfinite(mean_edge_length))
