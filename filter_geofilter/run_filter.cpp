@@ -414,14 +414,15 @@ RunOutput filter_surface(const FilterSpec& spec, const ParameterValues& given, c
     // The sampling-noise rule: the lowpass chosen on the mesh by estimated risk, applied, with
     // the options as the user gave them (the bump path below may hold the boundary).
     const FilterOptions sampling_options = options;
+    const auto sampling_surface = [&]() {
+        return cloud ? DenoiseSurface{cloud_operator(spec, values, false), true}
+                     : DenoiseSurface{operator_from_values(spec, values, false), false};
+    };
     const auto sampling_rule = [&]() {
         out.log.push_back("Denoise: the sampling-noise rule (the lowpass chosen on the mesh by estimated risk)" +
                           (sampling_why.empty() ? std::string(", nothing selected") : ": " + sampling_why));
         const int order = order_of(spec, values);
-        sampled = denoise_sampling_noise(input.points, input.triangles, order,
-                                         cloud ? DenoiseSurface{cloud_operator(spec, values, false), true}
-                                               : DenoiseSurface{operator_from_values(spec, values, false), false},
-                                         sampling_options);
+        sampled = denoise_sampling_noise(input.points, input.triangles, order, sampling_surface(), sampling_options);
         const DenoiseDesign& d = sampled->design;
         out.op = d.op;
         out.transfer = d.g;
@@ -640,9 +641,8 @@ RunOutput filter_surface(const FilterSpec& spec, const ParameterValues& given, c
             }
             out.points = bump.points;
             if (bump.outcome == SelectedBumpOutcome::PatternRemoved || bump.outcome == SelectedBumpOutcome::FlatLowpass) {
-                const SamplingDenoise across = denoise_sampling_noise(
-                    input.points, input.triangles, order_of(spec, values),
-                    DenoiseSurface{operator_from_values(spec, values, false), false}, sampling_options);
+                const SamplingDenoise across = denoise_sampling_noise(input.points, input.triangles, order_of(spec, values),
+                                                                      sampling_surface(), sampling_options);
                 const std::string read = std::string("the sampling-noise rule reads the noise ") +
                                          noise_model_name(across.noise.model) + " (tangential / normal part " +
                                          format_number(across.noise.tangential_ratio) + ")";
