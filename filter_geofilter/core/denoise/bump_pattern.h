@@ -77,7 +77,8 @@ constexpr double bump_min_height = 1e-3;
 // when the model leaves more than bump_max_unexplained unexplained around the selected bump,
 // or (elements of both signs) across the whole surface, in the fit or as the lowpass itself
 // sees the pattern to subtract, or the selected bump is lower than bump_min_height of its
-// radius (report->removed says which). Vertices in no face stay. Throws Error on an empty selection or a radius that is not a positive number.
+// radius (report->removed says which). Vertices in no face stay. Throws Error on an empty
+// selection or a radius that is not a positive number.
 Points remove_bump_pattern(const Points& input, const Points& lowpassed, const Triangles& triangles,
                            const std::vector<int>& bump_faces, double bump_radius, const TransferFunction& g,
                            const FilterOptions& options, BumpPatternReport* report = nullptr);
