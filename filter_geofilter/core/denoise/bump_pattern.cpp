@@ -88,29 +88,20 @@ SparseMatrix profiles(const PointGrid& grid, const Points& base, const std::vect
 }
 
 // Non-negative least squares on the normal equations gram * a = rhs (gram symmetric positive
-// semi-definite), by block principal pivoting (Kim & Park 2011, after Judice & Pires 1994):
-// the unknowns taken as free are solved for exactly (sparse Cholesky), the rest held at zero;
-// every free one that came out negative and every held one whose gradient asks to grow swap
-// sides at once, and while that does not shrink the number of such unknowns for a few rounds
-// running, only the one of highest index swaps (their backup rule, which cannot cycle). Exact
-// solves matter here: in a crowded pattern raising every height at once mostly adds a smooth
-// field, which the lowpass keeps and d does not see, so that direction is weakly determined
-// and coordinate descent, stopped early, left the heights ~15 % low. The classical active set
-// (Lawson & Hanson) frees one unknown per solve: a noisy pattern of a few thousand peaks took
-// it over 100 solves per fit, stopped there unconverged, and the fits took most of a minute.
-// `free_last`: the last unknown may take either sign.
+// semi-definite), by active sets: the unknowns still free are solved for exactly (sparse
+// Cholesky), those that come out negative are held at zero, and a held one whose gradient
+// asks to grow is freed again. Exact solves matter here: in a crowded pattern raising every
+// height at once mostly adds a smooth field, which the lowpass keeps and d does not see, so
+// that direction is weakly determined and coordinate descent, stopped early, left the heights
+// ~15 % low. `free_last`: the last unknown may take either sign.
 Eigen::VectorXd non_negative_solve(const SparseMatrix& gram, const Eigen::VectorXd& rhs, bool free_last = false) {
     const Eigen::Index n = rhs.size();
     Eigen::VectorXd a = Eigen::VectorXd::Zero(n);
     if (n == 0) return a;
     const Eigen::VectorXd diagonal = gram.diagonal();
     const double largest = std::max(diagonal.maxCoeff(), 1e-300);
-    const auto usable = [&](Eigen::Index i) { return diagonal[i] > 1e-12 * largest; };
     std::vector<bool> free(static_cast<size_t>(n));
-    for (Eigen::Index i = 0; i < n; ++i) free[i] = usable(i);
-    constexpr int backup_after = 3;  // Kim & Park's p
-    Eigen::Index fewest_infeasible = n + 1;
-    int chances = backup_after;
+    for (Eigen::Index i = 0; i < n; ++i) free[i] = diagonal[i] > 1e-12 * largest;
     for (int round = 0; round < 100; ++round) {
         std::vector<Eigen::Index> at(static_cast<size_t>(n), -1), index;
         for (Eigen::Index i = 0; i < n; ++i)
@@ -134,23 +125,22 @@ Eigen::VectorXd non_negative_solve(const SparseMatrix& gram, const Eigen::Vector
             const Eigen::VectorXd x = factor.solve(b);
             for (size_t k = 0; k < index.size(); ++k) a[index[k]] = x[static_cast<Eigen::Index>(k)];
         }
-        // Infeasible: free and negative, or held at zero and asking to grow.
-        const Eigen::VectorXd gradient = rhs - gram * a;
-        std::vector<Eigen::Index> infeasible;
+        bool changed = false;
         for (Eigen::Index i = 0; i < n - (free_last ? 1 : 0); ++i)
-            if (free[i] ? a[i] < 0
-                        : usable(i) && gradient[i] > 1e-9 * std::sqrt(diagonal[i] * largest))
-                infeasible.push_back(i);
-        if (infeasible.empty()) break;
-        if (static_cast<Eigen::Index>(infeasible.size()) < fewest_infeasible) {
-            fewest_infeasible = static_cast<Eigen::Index>(infeasible.size());
-            chances = backup_after;
-        } else if (chances > 0) {
-            --chances;
-        } else {
-            infeasible = {infeasible.back()};
-        }
-        for (Eigen::Index i : infeasible) free[i] = !free[i];
+            if (free[i] && a[i] < 0) {
+                free[i] = false;
+                changed = true;
+            }
+        if (changed) continue;
+        // Held at zero but asking to grow: free the one that asks most.
+        const Eigen::VectorXd gradient = rhs - gram * a;
+        Eigen::Index grow = -1;
+        for (Eigen::Index i = 0; i < n; ++i)
+            if (!free[i] && diagonal[i] > 1e-12 * largest && gradient[i] > 1e-9 * std::sqrt(diagonal[i] * largest) &&
+                (grow < 0 || gradient[i] > gradient[grow]))
+                grow = i;
+        if (grow < 0) break;
+        free[grow] = true;
     }
     if (free_last) {
         const double last = a[n - 1];
