@@ -520,42 +520,6 @@ TEST(RiskEstimate, DenoiseFindsNoNoiseOnACleanScan) {
 }
 #endif
 
-// A CAD part with faint noise: a vertex on a crease or a corner stands out of the surface by
-// far more than six deviations of so faint a noise, often alone, as an outlier does. It is
-// not thrown, though: it lies in the planes of the faces across its ring's edges, and those
-// vertices stay where they are. Put back on the mean of their neighbours, the fandisk's
-// creases were worn away (here 45 vertices were taken; 3 are now). Outliers thrown off the
-// same part along its normals by 3-6 edge lengths, as a scanner's stray samples, are still
-// put back: 148 of 157, as many as without the plane test. Some land beside a concave
-// crease, on the plane of its far side: with one such plane enough, 144 were found, and the
-// result ended 0.253 of the input's RMS distance from the part instead of 0.222.
-#ifdef GEOFILTER_MESHES
-TEST(NoiseVariance, ACreaseOfAFaintlyNoisyPartIsNoImpulseButAThrownSampleIs) {
-    const Mesh part = reference::read_off(GEOFILTER_MESHES "/fandisk_large.off");
-    const double h = mean_edge_length(part.points, part.triangles);
-    const Points faint = noised_in_every_direction(part, 0.02 * h, 5);
-    const NoiseVariance quiet = estimate_noise_variance(faint, part.triangles, FilterOptions{});
-    EXPECT_LE(quiet.impulses.size(), 8u);
-
-    Points thrown = noised_along_normals(part, 0.12 * h, 7);
-    const Eigen::MatrixXd normal = vertex_normals(part.points, part.triangles);
-    std::mt19937 random(8);
-    std::uniform_real_distribution<double> unit(0, 1);
-    std::set<int> outliers;
-    for (Eigen::Index i = 0; i < thrown.rows(); ++i)
-        if (unit(random) < 0.01) {
-            outliers.insert(static_cast<int>(i));
-            thrown.row(i) += (unit(random) < 0.5 ? -1 : 1) * (3 + 3 * unit(random)) * h * normal.row(i);
-        }
-    const SamplingDenoise out = denoise_sampling_noise(thrown, part.triangles, 4, {}, FilterOptions{});
-    const NoiseVariance first = estimate_noise_variance(thrown, part.triangles, FilterOptions{});
-    int found = 0;
-    for (int i : first.impulses) found += outliers.count(i) > 0;
-    EXPECT_GE(found, 0.93 * static_cast<double>(outliers.size())) << outliers.size() << " thrown";
-    EXPECT_LT(rms_distance(out.points, part.points), 0.35 * rms_distance(thrown, part.points));
-}
-#endif
-
 // A scan noisy on one half only: the most regular part of the whole mesh lies in the clean
 // half, where the split's tangential part is the sampling's and its normal part nothing, so
 // the noise read as in every direction and the lowpass's sideways pull slid the clean half's

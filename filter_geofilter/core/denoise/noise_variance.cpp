@@ -191,43 +191,12 @@ NoiseVariance estimate_noise_variance(const Points& points, const Triangles& tri
     const auto clear_of_others = [&](Eigen::Index k) {
         return stands_out(k) && std::abs(residual[k]) > denoise_impulse_alone * others[k];
     };
-    // A vertex on a crease or a corner of a part continues the faces beyond its ring: it lies
-    // in the plane of the faces across its ring's edges on the same flat side, several of them,
-    // while an outlier stands off those planes by about as far as it was thrown. One plane is
-    // not enough: the plane of the far side of a concave crease passes over the near side, and
-    // a vertex of the near side thrown out can land on it (3 of the 166 outliers of a tuning-half
-    // fandisk did). Faces with a vertex that stands out too are left out: another outlier may
-    // tilt one through the vertex.
-    const VertexFaces around = vertex_faces(triangles, points.rows());
-    const auto continues_faces_beyond = [&](Eigen::Index i) {
-        const double within = std::max(denoise_crease_sigmas * std::sqrt(out.per_vertex[i]), planar_ring_tolerance * size);
-        int found = -1;
-        for (int k = around.start[i]; k < around.start[i + 1]; ++k) {
-            const Eigen::Index fan = around.face[k];
-            int a = -1, b = -1;
-            for (int c = 0; c < 3; ++c)
-                if (triangles(fan, c) != i) (a < 0 ? a : b) = triangles(fan, c);
-            for (int m = around.start[a]; m < around.start[a + 1]; ++m) {
-                const Eigen::Index f = around.face[m];
-                const auto has = [&](Eigen::Index v) { return triangles(f, 0) == v || triangles(f, 1) == v || triangles(f, 2) == v; };
-                if (f == found || !has(b) || has(i)) continue;
-                if (stands_out(triangles(f, 0)) || stands_out(triangles(f, 1)) || stands_out(triangles(f, 2))) continue;
-                const Eigen::RowVector3d corner = points.row(triangles(f, 0));
-                const Eigen::RowVector3d plane = (points.row(triangles(f, 1)) - corner).cross(points.row(triangles(f, 2)) - corner);
-                const double twice_area = plane.norm();
-                if (!(twice_area > 0) || std::abs((points.row(i) - corner).dot(plane)) > within * twice_area) continue;
-                if (found >= 0) return true;
-                found = static_cast<int>(f);
-            }
-        }
-        return false;
-    };
     for (Eigen::Index i = 0; i < points.rows(); ++i) {
         const int j = loudest[static_cast<std::size_t>(i)];
         if (j < 0 || !clear_of_others(i)) continue;
         const bool alone = std::abs(residual[i]) > denoise_impulse_alone * std::abs(residual[j]);
         const bool one_of_a_pair = loudest[static_cast<std::size_t>(j)] == i && clear_of_others(j);
-        if ((alone || one_of_a_pair) && !continues_faces_beyond(i)) out.impulses.push_back(static_cast<int>(i));
+        if (alone || one_of_a_pair) out.impulses.push_back(static_cast<int>(i));
     }
     out.mean = sum / vertices;
     return out;

@@ -66,15 +66,6 @@ constexpr double denoise_impulse_sigmas = 6.0;
 // away (580 vertices, 0.001 -> 0.089 edge lengths RMS); at twice, none were. The tuning half's
 // scans with outliers paid for it: 0.66-1.11e-3 RMS against 0.23-0.80 (inputs 2.36-4.48).
 constexpr double denoise_impulse_alone = 2.0;
-// Nor is it an outlier when it lies within this many standard deviations of its noise of the
-// planes of two faces across its ring's edges: it continues them, as a vertex on a crease or
-// a corner of a CAD part does, while an outlier stands off such planes by about as far as it
-// was thrown, at least six deviations (above). Three is the noise's own band, as for the
-// motion bound; on the tuning half's scans with outliers as many were found as without the
-// test (719-724, 687 against 702, 160 against 166 on the fandisk, whose RMS went 1.018 ->
-// 1.017e-3), and a faintly noisy fandisk kept its creases (45 vertices taken before, 3 now;
-// unit test).
-constexpr double denoise_crease_sigmas = 3.0;
 
 struct NoiseVariance {
     Eigen::VectorXd per_vertex;  // s_i^2 of the noise along the normals (or the direction given) at each vertex (0 for a vertex in no face)
