@@ -481,7 +481,17 @@ RunOutput filter_surface(const FilterSpec& spec, const ParameterValues& given, c
                                            (steps ? std::to_string(steps) + " Lanczos steps" : std::string("by solves")) + ", " +
                                            format_number(sampled->scoring_seconds[i], 2) + " s)"
                                      : std::string("not scored (beyond a higher score)")) +
-                              (candidate.origin == d.origin && !sampled->input_kept ? "  <- chosen" : ""));
+                              (candidate.origin == d.origin && !sampled->input_kept && !sampled->normal_fit ? "  <- chosen" : ""));
+        }
+        for (const auto& [strength, score] : sampled->normal_fit_scores) {
+            const bool kept = sampled->normal_fit && sampled->normal_fit->normal_rounds == strength.normal_rounds &&
+                              sampled->normal_fit->vertex_rounds == strength.vertex_rounds;
+            out.log.push_back("  that lowpass, then fitted to its face normals smoothed edge-aware (" +
+                              std::to_string(strength.normal_rounds) + " rounds over the normals, " +
+                              std::to_string(strength.vertex_rounds) + " over the vertices): " + format_number(1e6 * score.risk) +
+                              " (" + format_number(1e6 * score.residual) + ", " +
+                              format_number(score.degrees_of_freedom / score.observations) + ")" +
+                              (kept && !sampled->input_kept ? "  <- chosen" : ""));
         }
         out.log.push_back("  leaving the mesh as it is (the noise's own variance): " + format_number(1e6 * sampled->input_risk) +
                           (sampled->input_kept ? "  <- chosen" : ""));
@@ -502,6 +512,11 @@ RunOutput filter_surface(const FilterSpec& spec, const ParameterValues& given, c
             out.log.push_back("design: Butterworth lowpass of order " + std::to_string(order) + ", cutoff sc = " +
                               format_number(d.cutoff) + ", operator " + operator_name(d.op));
             log_response(spec, values, out);
+            if (const auto& fit = sampled->normal_fit)
+                out.log.push_back("then fitted to its face normals smoothed edge-aware (faces more than " +
+                                  format_number(normal_fit_angle_degrees) + " degrees apart hardly mix; " +
+                                  std::to_string(fit->normal_rounds) + " rounds over the normals, " +
+                                  std::to_string(fit->vertex_rounds) + " over the vertices): it scored lower than the lowpass alone");
         }
         if (sampled->input_kept) {
             out.points = input.points;

@@ -287,6 +287,9 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
     const Eigen::VectorXd scored_sigma = scored_variance.cwiseSqrt();
     const Triangles& scored_triangles = best.scoring_patches ? patches.mesh.triangles : triangles;
     int chosen = -1;
+    // The last scoring runs' lowpassed input and perturbed input, and the chosen candidate's:
+    // the fit to filtered normals is scored on the chosen lowpass's runs without running it again.
+    Points lowpassed[2], chosen_lowpassed[2];
     // Progress: the scoring runs share the first 90 % (counted as if every candidate were
     // scored: the search skips some, so the bar jumps ahead at the end), the final run the rest.
     const double scoring_share = 0.9;
@@ -326,6 +329,7 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
             FilterReport report;
             Points out = apply_filter(at, scored_triangles, design.g, mine, &report, perturbed && own_cache ? &on_perturbed : &on_input);
             krylov_steps[perturbed ? 1 : 0] = report.krylov_steps;
+            lowpassed[perturbed ? 1 : 0] = out;
             return out;
         };
         int calls = 0;
@@ -342,7 +346,11 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
             std::chrono::duration<double>(std::chrono::steady_clock::now() - t_candidate).count();
         best.scores[static_cast<std::size_t>(index)].second = score;
         best.scored_vertices = score.vertices;
-        if (chosen < 0 || score.risk < best.scores[static_cast<std::size_t>(chosen)].second->risk) chosen = index;
+        if (chosen < 0 || score.risk < best.scores[static_cast<std::size_t>(chosen)].second->risk) {
+            chosen = index;
+            chosen_lowpassed[0].swap(lowpassed[0]);
+            chosen_lowpassed[1].swap(lowpassed[1]);
+        }
         return score.risk;
     };
     for (std::size_t first = 0; first < candidates.size();) {
@@ -354,14 +362,34 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
         first = last;
     }
     best.design = candidates.at(static_cast<std::size_t>(chosen));
+    // The fit to filtered normals on top of the chosen lowpass, scored as the lowpass was (its
+    // runs on the input and the perturbed input, each fitted): from the mildest strength up,
+    // while each scores below the last. Not on a cloud, whose fans overlap and have no faces
+    // to stand square to anything.
+    double lowest_risk = best.scores[static_cast<std::size_t>(chosen)].second->risk;
+    if (!surface.point_cloud) {
+        for (const NormalFitStrength& strength : normal_fit_strengths) {
+            int calls = 0;
+            const Smoother fitted = [&](const Points&) {
+                return fit_to_filtered_normals(chosen_lowpassed[calls++ == 0 ? 0 : 1], scored_triangles, strength);
+            };
+            const RiskEstimate score = estimate_risk(
+                scored_points, scored_triangles, fitted, step, denoise_probe_seed, best.noise, scored_variance, nullptr,
+                [&](const Points& at, const Points& f) { return denoise_output(at, f, scored_triangles, surface, best.noise, scored_sigma); },
+                patches.counted);
+            best.normal_fit_scores.emplace_back(strength, score);
+            if (!(score.risk < lowest_risk)) break;
+            lowest_risk = score.risk;
+            best.normal_fit = strength;
+        }
+    }
     best.seconds.scoring = stage_done();
     // Leaving the mesh as it is passes every noisy number, so its risk is the noise's own.
     // Measured where it matters: the man with noise of 0.1 mean edge lengths in random
     // directions, where every lowpass ends farther from the truth than the input (0.561e-3
     // RMS in, 0.731e-3 for the best-scoring lowpass), and the estimate says so.
-    const RiskEstimate& lowest = *best.scores[static_cast<std::size_t>(chosen)].second;
-    best.input_risk = lowest.unchanged;
-    if (!(lowest.risk < best.input_risk)) {
+    best.input_risk = best.scores[static_cast<std::size_t>(chosen)].second->unchanged;
+    if (!(lowest_risk < best.input_risk)) {
         best.input_kept = true;
         best.points = y;
         best.report.seconds_total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -380,8 +408,9 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
         };
     if (best.noise.model == NoiseModel::AlongNormals) best.normal_motion.emplace();
     if (best.noise.model != NoiseModel::Isotropic) best.motion_bound.emplace();
-    best.points = denoise_output(y, apply_filter(y, triangles, best.design.g, o, &best.report,
-                                                     best.design.op == Operator::Umbrella ? &umbrella : nullptr), triangles, surface,
+    Points lowpassed_y = apply_filter(y, triangles, best.design.g, o, &best.report, best.design.op == Operator::Umbrella ? &umbrella : nullptr);
+    if (best.normal_fit) lowpassed_y = fit_to_filtered_normals(lowpassed_y, triangles, *best.normal_fit);
+    best.points = denoise_output(y, std::move(lowpassed_y), triangles, surface,
                                  best.noise, sigma, best.normal_motion ? &*best.normal_motion : nullptr,
                                  best.motion_bound ? &*best.motion_bound : nullptr, &best.volume);
     best.seconds.final_run = stage_done();

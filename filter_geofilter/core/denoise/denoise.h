@@ -11,6 +11,7 @@
 #include "core/denoise/noise_direction.h"
 #include "core/denoise/motion_bound.h"
 #include "core/denoise/noise_variance.h"
+#include "core/denoise/normal_fit.h"
 #include "core/denoise/normal_motion.h"
 #include "core/operators/operators.h"
 #include "core/denoise/risk_estimate.h"
@@ -245,6 +246,10 @@ struct SamplingDenoise {
     // lowpass spreads a spike over its neighbours instead of removing it, and the motion
     // bound would hold it where it is.
     int impulses = 0;  // over every round
+    // The fit to filtered normals (normal_fit.h) tried on the chosen lowpass, with its score,
+    // and the strength kept (none when the mildest scored no lower than the lowpass alone).
+    std::vector<std::pair<NormalFitStrength, RiskEstimate>> normal_fit_scores;
+    std::optional<NormalFitStrength> normal_fit;
     std::optional<NormalMotionReport> normal_motion;  // when the noise looks along the normals
     std::optional<MotionBoundReport> motion_bound;    // likewise
     VolumeRestoreReport volume;
