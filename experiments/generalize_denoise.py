@@ -486,6 +486,13 @@ def denoise_python(case, cloud=False):
     return out, report["log"]
 
 
+def denoise_log_lines(log):
+    """The lines of Denoise's log that say which path ran and what it chose."""
+    keys = ("pattern of bumps", "cutoff sc", "noise model", "no lowpass scored below", "fell back",
+            "then fitted to its face normals")
+    return [line for line in log if any(k in line for k in keys)]
+
+
 def run_meshlab(d, case, inp):
     """Denoise and MeshLab's smoothers through meshlabserver: {row: (v, setting)}."""
     out = {}
@@ -493,8 +500,7 @@ def run_meshlab(d, case, inp):
     steps = [cd.select_bump(sel[0], sel[1]), cd.denoise_step(True)] if sel is not None else [c.select_none(), cd.denoise_step(False)]
     path = os.path.join(d, "denoise.ply")
     r, _ = c.run(d, steps, inputs=[inp], outputs=[(path, None)], name="denoise")
-    out["denoise"] = (h.read_ply(path).vertices, [line for line in r.log if "pattern of bumps" in line or "cutoff sc" in line
-                                                  or "noise model" in line or "no lowpass scored below" in line or "fell back" in line])
+    out["denoise"] = (h.read_ply(path).vertices, denoise_log_lines(r.log))
     for key, counts in cd.SWEEP.items():
         if key == "twostep":
             counts = [1, 3, 10]
@@ -541,8 +547,7 @@ def run_case(case, work, denoise_only, cloud=False):
     t = time.perf_counter()
     if denoise_only:
         v, log = denoise_python(case, cloud)
-        rows["denoise"] = dict(m(v), log=[line for line in log if "pattern of bumps" in line or "cutoff sc" in line
-                                         or "noise model" in line or "no lowpass scored below" in line or "fell back" in line])
+        rows["denoise"] = dict(m(v), log=denoise_log_lines(log))
     else:
         for key, (v, setting) in run_meshlab(d, case, inp).items():
             rows[key] = dict(m(v), log=setting) if key == "denoise" else dict(m(v), setting=setting)

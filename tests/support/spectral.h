@@ -6,6 +6,7 @@
 #include "shapes.h"
 #include "core/design/transfer_function.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace geofilter::reference {
@@ -49,6 +50,20 @@ inline double mean_radius(const Points& p, const Eigen::RowVector3d& centre = Ei
 
 // RMS over the vertices of the distance between two positions of the same points.
 inline double rms_distance(const Points& a, const Points& b) { return std::sqrt((a - b).rowwise().squaredNorm().mean()); }
+
+// The mean over the faces of the angle between a face's normal on `p` and on `truth`, in
+// degrees (faces of zero area on either side count as turned by 90).
+inline double mean_normal_error_degrees(const Points& p, const Points& truth, const Triangles& triangles) {
+    double sum = 0;
+    for (Eigen::Index f = 0; f < triangles.rows(); ++f) {
+        const auto normal = [&](const Points& q) {
+            const Eigen::RowVector3d a = q.row(triangles(f, 0));
+            return Eigen::RowVector3d((q.row(triangles(f, 1)) - a).cross(q.row(triangles(f, 2)) - a).normalized());
+        };
+        sum += std::acos(std::clamp(normal(p).dot(normal(truth)), -1.0, 1.0));
+    }
+    return triangles.rows() ? sum / static_cast<double>(triangles.rows()) * 180 / M_PI : 0;
+}
 
 // Area-weighted RMS of a per-vertex difference: the measure FilterOptions::tolerance bounds.
 inline double area_weighted_rms(const Points& difference, const Eigen::VectorXd& mass) {

@@ -53,18 +53,6 @@ bool on_an_edge(const Eigen::RowVector3d& p) {
     return at_side >= 2;
 }
 
-double mean_normal_error_degrees(const Points& p, const Points& truth, const Triangles& t) {
-    double sum = 0;
-    for (Eigen::Index f = 0; f < t.rows(); ++f) {
-        const auto normal = [&](const Points& q) {
-            const Eigen::RowVector3d a = q.row(t(f, 0));
-            return Eigen::RowVector3d((q.row(t(f, 1)) - a).cross(q.row(t(f, 2)) - a).normalized());
-        };
-        sum += std::acos(std::clamp(normal(p).dot(normal(truth)), -1.0, 1.0));
-    }
-    return sum / static_cast<double>(t.rows()) * 180 / M_PI;
-}
-
 } // namespace
 
 // Faces 90 degrees apart carry no weight on each other's normal (exp(-275)), so a clean box
@@ -92,10 +80,10 @@ TEST(NormalFit, TakesNoiseOffABoxAndKeepsItsEdges) {
         SCOPED_TRACE(strength.normal_rounds);
         const Points out = fit_to_filtered_normals(noisy, box.triangles, strength);
         const double rms = reference::rms_distance(out, box.points);
-        const double turn = mean_normal_error_degrees(out, box.points, box.triangles);
+        const double turn = reference::mean_normal_error_degrees(out, box.points, box.triangles);
         // Measured: 0.74, 0.58, 0.47, 0.38 of the input's RMS; 0.66, 0.43, 0.30, 0.16 of its normals' error.
         EXPECT_LT(rms, 0.8 * reference::rms_distance(noisy, box.points));
-        EXPECT_LT(turn, 0.8 * mean_normal_error_degrees(noisy, box.points, box.triangles));
+        EXPECT_LT(turn, 0.8 * reference::mean_normal_error_degrees(noisy, box.points, box.triangles));
         EXPECT_LT(rms, weaker_rms);  // the strengths are tried mildest first: each takes more noise
         EXPECT_LT(turn, weaker_turn);
         weaker_rms = rms;

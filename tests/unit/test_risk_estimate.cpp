@@ -449,17 +449,7 @@ TEST(RiskEstimate, DenoiseFitsACadPartToItsEdgeAwareNormals) {
     const Mesh clean = reference::read_off(GEOFILTER_MESHES "/fandisk_large.off");
     const double h = mean_edge_length(clean.points, clean.triangles);
     const Points noisy = noised_in_every_direction(clean, 0.3 * h, 5);
-    const auto mean_turn = [&](const Points& p) {
-        double sum = 0;
-        for (Eigen::Index f = 0; f < clean.triangles.rows(); ++f) {
-            const auto normal = [&](const Points& q) {
-                const Eigen::RowVector3d a = q.row(clean.triangles(f, 0));
-                return Eigen::RowVector3d((q.row(clean.triangles(f, 1)) - a).cross(q.row(clean.triangles(f, 2)) - a).normalized());
-            };
-            sum += std::acos(std::clamp(normal(p).dot(normal(clean.points)), -1.0, 1.0));
-        }
-        return sum / static_cast<double>(clean.triangles.rows());
-    };
+    const auto mean_turn = [&](const Points& p) { return reference::mean_normal_error_degrees(p, clean.points, clean.triangles); };
     double best = INFINITY, best_turn = 0;
     FilterOptions options;
     for (const DenoiseDesign& d : denoise_sampling_candidates(h, 4, {})) {
@@ -472,6 +462,27 @@ TEST(RiskEstimate, DenoiseFitsACadPartToItsEdgeAwareNormals) {
     ASSERT_TRUE(out.normal_fit.has_value());
     EXPECT_LT(rms_distance(out.points, clean.points), best);
     EXPECT_LT(mean_turn(out.points), 0.8 * best_turn);
+}
+
+// Noise along a view direction: the fit to filtered normals squares the faces Denoise returns
+// (the lowpass's motion along the view only), moving the vertices along the view. Against the
+// same lowpass finished the same way without it, bunny00 ends closer to the clean scan and its
+// faces turn less (measured: 0.77x the RMS, 0.58x the mean normal error).
+TEST(NoiseDirection, DenoiseFitsADepthScanAlongItsView) {
+    const Mesh clean = reference::read_off(GEOFILTER_MESHES "/bunny00.off");
+    const double h = mean_edge_length(clean.points, clean.triangles);
+    Eigen::VectorXd sigma;
+    const Points noisy = noised_along_a_view(clean.points, Eigen::Vector3d(1, 2, 2).normalized(), 0.1 * h, 0.5 * h, 11, &sigma);
+    const SamplingDenoise out = denoise_sampling_noise(noisy, clean.triangles, 4, {}, FilterOptions{});
+    ASSERT_EQ(out.noise.model, NoiseModel::AlongDirection);
+    ASSERT_TRUE(out.normal_fit.has_value());
+    FilterOptions options;
+    options.op = out.design.op;
+    const Points unfitted = denoise_output(noisy, apply_filter(noisy, clean.triangles, out.design.g, options), clean.triangles,
+                                           {}, out.noise, out.variance.per_vertex.cwiseSqrt());
+    const auto mean_turn = [&](const Points& p) { return reference::mean_normal_error_degrees(p, clean.points, clean.triangles); };
+    EXPECT_LT(rms_distance(out.points, clean.points), 0.9 * rms_distance(unfitted, clean.points));
+    EXPECT_LT(mean_turn(out.points), 0.8 * mean_turn(unfitted));
 }
 
 // On real scans with noise along the normals or in every direction, the lowpass with the

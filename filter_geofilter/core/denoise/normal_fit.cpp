@@ -6,7 +6,8 @@
 
 namespace geofilter {
 
-Points fit_to_filtered_normals(const Points& points, const Triangles& triangles, NormalFitStrength strength) {
+Points fit_to_filtered_normals(const Points& points, const Triangles& triangles, NormalFitStrength strength,
+                               const Eigen::Vector3d* along) {
     const Eigen::Index faces = triangles.rows();
     const VertexFaces around = vertex_faces(triangles, points.rows());
     Eigen::MatrixXd normal(faces, 3);
@@ -67,6 +68,7 @@ Points fit_to_filtered_normals(const Points& points, const Triangles& triangles,
                 count[v] += 1;
             }
         }
+        if (along) step = (step * *along) * along->transpose();
         for (Eigen::Index v = 0; v < points.rows(); ++v)
             if (count[v] > 0) out.row(v) += step.row(v) / count[v];
     }

@@ -34,6 +34,10 @@ constexpr NormalFitStrength normal_fit_strengths[] = {{1, 5}, {2, 10}, {3, 10}, 
 // puts v into the plane through c square to n, averaged. Faces of zero area carry no normal
 // and no weight; a vertex in no face stays where it is. A face the fit turns over against
 // itself in `points` sends its three vertices back to their place in `points`, until none is.
-Points fit_to_filtered_normals(const Points& points, const Triangles& triangles, NormalFitStrength strength);
+// With `along` (a unit direction), every vertex round moves the vertices along it only, by
+// their step's part along it: for noise along one direction, which left the vertices' place
+// across it right.
+Points fit_to_filtered_normals(const Points& points, const Triangles& triangles, NormalFitStrength strength,
+                               const Eigen::Vector3d* along = nullptr);
 
 } // namespace geofilter
