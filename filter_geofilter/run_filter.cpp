@@ -418,6 +418,10 @@ RunOutput filter_surface(const FilterSpec& spec, const ParameterValues& given, c
         return cloud ? DenoiseSurface{cloud_operator(spec, values, false), true}
                      : DenoiseSurface{operator_from_values(spec, values, false), false};
     };
+    const auto fit_rounds = [](const NormalFitStrength& strength) {
+        return std::to_string(strength.normal_rounds) + (strength.normal_rounds == 1 ? " round" : " rounds") +
+               " over the normals, " + std::to_string(strength.vertex_rounds) + " over the vertices";
+    };
     const auto sampling_rule = [&]() {
         out.log.push_back("Denoise: the sampling-noise rule (the lowpass chosen on the mesh by estimated risk)" +
                           (sampling_why.empty() ? std::string(", nothing selected") : ": " + sampling_why));
@@ -486,9 +490,8 @@ RunOutput filter_surface(const FilterSpec& spec, const ParameterValues& given, c
         for (const auto& [strength, score] : sampled->normal_fit_scores) {
             const bool kept = sampled->normal_fit && sampled->normal_fit->normal_rounds == strength.normal_rounds &&
                               sampled->normal_fit->vertex_rounds == strength.vertex_rounds;
-            out.log.push_back("  that lowpass, then fitted to its face normals smoothed edge-aware (" +
-                              std::to_string(strength.normal_rounds) + " rounds over the normals, " +
-                              std::to_string(strength.vertex_rounds) + " over the vertices): " + format_number(1e6 * score.risk) +
+            out.log.push_back("  that lowpass, then fitted to its face normals smoothed edge-aware (" + fit_rounds(strength) +
+                              "): " + format_number(1e6 * score.risk) +
                               " (" + format_number(1e6 * score.residual) + ", " +
                               format_number(score.degrees_of_freedom / score.observations) + ")" +
                               (kept && !sampled->input_kept ? "  <- chosen" : ""));
@@ -514,9 +517,8 @@ RunOutput filter_surface(const FilterSpec& spec, const ParameterValues& given, c
             log_response(spec, values, out);
             if (const auto& fit = sampled->normal_fit)
                 out.log.push_back("then fitted to its face normals smoothed edge-aware (faces more than " +
-                                  format_number(normal_fit_angle_degrees) + " degrees apart hardly mix; " +
-                                  std::to_string(fit->normal_rounds) + " rounds over the normals, " +
-                                  std::to_string(fit->vertex_rounds) + " over the vertices): it scored lower than the lowpass alone");
+                                  format_number(normal_fit_angle_degrees) + " degrees apart hardly mix; " + fit_rounds(*fit) +
+                                  "): it scored lower than the lowpass alone");
         }
         if (sampled->input_kept) {
             out.points = input.points;
