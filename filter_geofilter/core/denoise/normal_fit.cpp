@@ -1,7 +1,9 @@
 #include "core/denoise/normal_fit.h"
 #include "core/mesh/components.h"
 
+#include <algorithm>
 #include <cmath>
+#include <thread>
 #include <vector>
 
 namespace geofilter {
@@ -9,87 +11,102 @@ namespace geofilter {
 Points fit_to_filtered_normals(const Points& points, const Triangles& triangles, NormalFitStrength strength,
                                const Eigen::Vector3d* along) {
     const Eigen::Index faces = triangles.rows();
+    const std::size_t face_count = static_cast<std::size_t>(faces);
     const VertexFaces around = vertex_faces(triangles, points.rows());
-    Eigen::MatrixXd normal(faces, 3);
-    Eigen::VectorXd area(faces);
-    for (Eigen::Index f = 0; f < faces; ++f) {
-        const Eigen::RowVector3d a = points.row(triangles(f, 0));
-        const Eigen::RowVector3d n = (points.row(triangles(f, 1)) - a).cross(points.row(triangles(f, 2)) - a);
+    // Positions and normals one row per element, contiguous: the rounds below read each
+    // neighbour's three coordinates together (Points is stored by column).
+    std::vector<Eigen::Vector3d> at(static_cast<std::size_t>(points.rows()));
+    for (Eigen::Index v = 0; v < points.rows(); ++v) at[static_cast<std::size_t>(v)] = points.row(v).transpose();
+    const auto corner = [&](std::size_t f, int k) -> Eigen::Vector3d& { return at[static_cast<std::size_t>(triangles(static_cast<Eigen::Index>(f), k))]; };
+    std::vector<Eigen::Vector3d> normal(face_count), smoothed(face_count);
+    std::vector<double> area(face_count);
+    for (std::size_t f = 0; f < face_count; ++f) {
+        const Eigen::Vector3d n = (corner(f, 1) - corner(f, 0)).cross(corner(f, 2) - corner(f, 0));
         const double length = n.norm();
         area[f] = 0.5 * length;
-        normal.row(f) = length > 0 ? Eigen::RowVector3d(n / length) : Eigen::RowVector3d::Zero();
+        normal[f] = length > 0 ? Eigen::Vector3d(n / length) : Eigen::Vector3d::Zero();
     }
+    const std::vector<Eigen::Vector3d> input_normal = normal;
     // The faces sharing a vertex with each face, once each.
-    std::vector<int> start(static_cast<std::size_t>(faces) + 1, 0), neighbour;
+    std::vector<int> start(face_count + 1, 0), neighbour;
+    neighbour.reserve(14 * face_count);
     {
-        std::vector<int> seen(static_cast<std::size_t>(faces), -1);
-        for (Eigen::Index f = 0; f < faces; ++f) {
+        std::vector<int> seen(face_count, -1);
+        for (std::size_t f = 0; f < face_count; ++f) {
             for (int k = 0; k < 3; ++k) {
-                const int v = triangles(f, k);
-                for (int i = around.start[static_cast<std::size_t>(v)]; i < around.start[static_cast<std::size_t>(v) + 1]; ++i) {
+                const auto v = static_cast<std::size_t>(triangles(static_cast<Eigen::Index>(f), k));
+                for (int i = around.start[v]; i < around.start[v + 1]; ++i) {
                     const int g = around.face[static_cast<std::size_t>(i)];
-                    if (seen[static_cast<std::size_t>(g)] == f) continue;
+                    if (seen[static_cast<std::size_t>(g)] == static_cast<int>(f)) continue;
                     seen[static_cast<std::size_t>(g)] = static_cast<int>(f);
                     neighbour.push_back(g);
                 }
             }
-            start[static_cast<std::size_t>(f) + 1] = static_cast<int>(neighbour.size());
+            start[f + 1] = static_cast<int>(neighbour.size());
         }
     }
     const double width = 1 - std::cos(normal_fit_angle_degrees * M_PI / 180);
-    Eigen::MatrixXd smoothed(faces, 3);
-    for (int round = 0; round < strength.normal_rounds; ++round) {
-        for (Eigen::Index f = 0; f < faces; ++f) {
-            Eigen::RowVector3d sum = Eigen::RowVector3d::Zero();
-            const Eigen::RowVector3d n = normal.row(f);
-            for (int i = start[static_cast<std::size_t>(f)]; i < start[static_cast<std::size_t>(f) + 1]; ++i) {
-                const int g = neighbour[static_cast<std::size_t>(i)];
-                const double apart = (1 - n.dot(normal.row(g))) / width;
-                sum += area[g] * std::exp(-apart * apart) * normal.row(g);
+    const auto smooth_block = [&](std::size_t first, std::size_t last) {
+        for (std::size_t f = first; f < last; ++f) {
+            Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+            const Eigen::Vector3d& n = normal[f];
+            for (int i = start[f]; i < start[f + 1]; ++i) {
+                const auto g = static_cast<std::size_t>(neighbour[static_cast<std::size_t>(i)]);
+                const double apart = (1 - n.dot(normal[g])) / width;
+                sum += area[g] * std::exp(-apart * apart) * normal[g];
             }
             const double length = sum.norm();
-            smoothed.row(f) = length > 0 ? Eigen::RowVector3d(sum / length) : n;
+            smoothed[f] = length > 0 ? Eigen::Vector3d(sum / length) : n;
         }
+    };
+    // Each face's smoothed normal depends on the round before only: the faces are split
+    // between threads, with the same result.
+    const std::size_t threads = std::clamp<std::size_t>(std::thread::hardware_concurrency(), 1, 4);
+    const std::size_t block = (face_count + threads - 1) / threads;
+    for (int round = 0; round < strength.normal_rounds; ++round) {
+        std::vector<std::thread> helpers;
+        for (std::size_t t = 1; t < threads && t * block < face_count; ++t)
+            helpers.emplace_back(smooth_block, t * block, std::min(face_count, (t + 1) * block));
+        smooth_block(0, std::min(face_count, block));
+        for (std::thread& helper : helpers) helper.join();
         normal.swap(smoothed);
     }
-    Points out = points;
-    Points step(points.rows(), 3);
+    std::vector<Eigen::Vector3d> step(at.size());
+    std::vector<int> count(at.size(), 0);
+    for (std::size_t f = 0; f < face_count; ++f)
+        if (normal[f].squaredNorm() > 0)
+            for (int k = 0; k < 3; ++k) ++count[static_cast<std::size_t>(triangles(static_cast<Eigen::Index>(f), k))];
     for (int round = 0; round < strength.vertex_rounds; ++round) {
-        step.setZero();
-        Eigen::VectorXd count = Eigen::VectorXd::Zero(points.rows());
-        for (Eigen::Index f = 0; f < faces; ++f) {
-            const Eigen::RowVector3d n = normal.row(f);
+        std::fill(step.begin(), step.end(), Eigen::Vector3d::Zero());
+        for (std::size_t f = 0; f < face_count; ++f) {
+            const Eigen::Vector3d& n = normal[f];
             if (n.squaredNorm() == 0) continue;
-            const Eigen::RowVector3d centroid =
-                (out.row(triangles(f, 0)) + out.row(triangles(f, 1)) + out.row(triangles(f, 2))) / 3;
-            for (int k = 0; k < 3; ++k) {
-                const int v = triangles(f, k);
-                step.row(v) += n.dot(centroid - out.row(v)) * n;
-                count[v] += 1;
-            }
+            const Eigen::Vector3d centroid = (corner(f, 0) + corner(f, 1) + corner(f, 2)) / 3;
+            for (int k = 0; k < 3; ++k)
+                step[static_cast<std::size_t>(triangles(static_cast<Eigen::Index>(f), k))] += n.dot(centroid - corner(f, k)) * n;
         }
-        if (along) step = (step * *along) * along->transpose();
-        for (Eigen::Index v = 0; v < points.rows(); ++v)
-            if (count[v] > 0) out.row(v) += step.row(v) / count[v];
+        for (std::size_t v = 0; v < at.size(); ++v) {
+            if (count[v] == 0) continue;
+            const Eigen::Vector3d s = along ? Eigen::Vector3d(step[v].dot(*along) * *along) : step[v];
+            at[v] += s / count[v];
+        }
     }
     // A thin face can be stepped over; its vertices go back to where they were, until no
     // face of the fit is turned over against the same face before it.
-    const auto turned = [&](Eigen::Index f) {
-        const auto face_normal = [&](const Points& p) {
-            const Eigen::RowVector3d a = p.row(triangles(f, 0));
-            return Eigen::RowVector3d((p.row(triangles(f, 1)) - a).cross(p.row(triangles(f, 2)) - a));
-        };
-        return face_normal(out).dot(face_normal(points)) < 0;
-    };
     for (bool reverted = true; reverted;) {
         reverted = false;
-        for (Eigen::Index f = 0; f < faces; ++f)
-            if (turned(f))
-                for (int k = 0; k < 3; ++k) {
-                    out.row(triangles(f, k)) = points.row(triangles(f, k));
-                    reverted = true;
-                }
+        for (std::size_t f = 0; f < face_count; ++f) {
+            const Eigen::Vector3d n = (corner(f, 1) - corner(f, 0)).cross(corner(f, 2) - corner(f, 0));
+            if (n.dot(input_normal[f]) >= 0) continue;
+            for (int k = 0; k < 3; ++k) {
+                const Eigen::Index v = triangles(static_cast<Eigen::Index>(f), k);
+                corner(f, k) = points.row(v).transpose();
+            }
+            reverted = true;
+        }
     }
+    Points out(points.rows(), 3);
+    for (Eigen::Index v = 0; v < points.rows(); ++v) out.row(v) = at[static_cast<std::size_t>(v)].transpose();
     return out;
 }
 
