@@ -28,17 +28,13 @@ bool denoise_bump_holds_boundary(const Triangles& triangles, Eigen::Index vertex
 }
 
 double selected_area_share(const Points& points, const Triangles& triangles, const std::vector<int>& faces) {
-    const auto face_area = [&](Eigen::Index f) {
-        const Eigen::RowVector3d a = points.row(triangles(f, 0));
-        return 0.5 * (points.row(triangles(f, 1)) - a).cross(points.row(triangles(f, 2)) - a).norm();
-    };
     double total = 0, selected = 0;
-    for (Eigen::Index f = 0; f < triangles.rows(); ++f) total += face_area(f);
+    for (Eigen::Index f = 0; f < triangles.rows(); ++f) total += face_area(points, triangles, f);
     std::vector<bool> counted(static_cast<size_t>(triangles.rows()), false);
     for (int f : faces)
         if (f >= 0 && f < triangles.rows() && !counted[static_cast<size_t>(f)]) {
             counted[static_cast<size_t>(f)] = true;
-            selected += face_area(f);
+            selected += face_area(points, triangles, f);
         }
     return total > 0 ? selected / total : 0.0;
 }
@@ -50,8 +46,7 @@ double detail_removed_at(const Points& input, const Points& lowpassed, const Tri
     const Eigen::MatrixXd normal = vertex_normals(lowpassed, triangles);
     Eigen::VectorXd area = Eigen::VectorXd::Zero(input.rows());
     for (int f : faces) {
-        const Eigen::RowVector3d a = lowpassed.row(triangles(f, 0));
-        const double third = (lowpassed.row(triangles(f, 1)) - a).cross(lowpassed.row(triangles(f, 2)) - a).norm() / 6;
+        const double third = twice_area_normal(lowpassed, triangles, f).norm() / 6;
         for (int k = 0; k < 3; ++k) area[triangles(f, k)] += third;
     }
     const double total = area.sum();
@@ -225,9 +220,10 @@ namespace {
 // tuning half's CAD parts: fandisk 1.095 / 4.52 back to 1.439 / 7.41), so there, as in every
 // direction, the fit works on the lowpass.
 Points fit_kept_motion(const Points& noisy, const Points& lowpassed, const Triangles& triangles,
-                       const NoiseDirection& noise, NormalFitStrength strength) {
-    if (noise.model != NoiseModel::AlongDirection) return fit_to_filtered_normals(lowpassed, triangles, strength);
-    return fit_to_filtered_normals(keep_motion_along(noisy, lowpassed, noise.direction), triangles, strength, &noise.direction);
+                       const FaceNeighbourhoods& neighbourhoods, const NoiseDirection& noise, NormalFitStrength strength) {
+    if (noise.model != NoiseModel::AlongDirection) return fit_to_filtered_normals(lowpassed, triangles, neighbourhoods, strength);
+    return fit_to_filtered_normals(keep_motion_along(noisy, lowpassed, noise.direction), triangles, neighbourhoods, strength,
+                                   &noise.direction);
 }
 
 } // namespace
@@ -400,11 +396,14 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
     // (0.0025 mean edge lengths RMS) the lowpass scored 0.3 % above leaving it, the fit below, and
     // the fitted part ended 14x farther from the clean one than its input.
     double lowest_risk = best.scores[static_cast<std::size_t>(chosen)].second->risk;
+    FaceNeighbourhoods scored_neighbourhoods;
     if (!surface.point_cloud && lowest_risk < best.scores[static_cast<std::size_t>(chosen)].second->unchanged) {
+        scored_neighbourhoods = faces_sharing_a_vertex(scored_triangles, scored_points.rows());
         for (const NormalFitStrength& strength : normal_fit_strengths) {
             int calls = 0;
             const Smoother fitted = [&](const Points& at) {
-                return fit_kept_motion(at, chosen_lowpassed[calls++ == 0 ? 0 : 1], scored_triangles, best.noise, strength);
+                return fit_kept_motion(at, chosen_lowpassed[calls++ == 0 ? 0 : 1], scored_triangles, scored_neighbourhoods,
+                                       best.noise, strength);
             };
             const RiskEstimate score = estimate_risk(
                 scored_points, scored_triangles, fitted, step, denoise_probe_seed, best.noise, scored_variance, nullptr,
@@ -442,7 +441,11 @@ SamplingDenoise denoise_sampling_noise(const Points& points, const Triangles& tr
     if (best.noise.model == NoiseModel::AlongNormals) best.normal_motion.emplace();
     if (best.noise.model != NoiseModel::Isotropic) best.motion_bound.emplace();
     Points lowpassed_y = apply_filter(y, triangles, best.design.g, o, &best.report, best.design.op == Operator::Umbrella ? &umbrella : nullptr);
-    if (best.normal_fit) lowpassed_y = fit_kept_motion(y, lowpassed_y, triangles, best.noise, *best.normal_fit);
+    if (best.normal_fit) {
+        // Made for the scored mesh, which is the whole mesh unless it was scored on patches.
+        if (best.scoring_patches) scored_neighbourhoods = faces_sharing_a_vertex(triangles, y.rows());
+        lowpassed_y = fit_kept_motion(y, lowpassed_y, triangles, scored_neighbourhoods, best.noise, *best.normal_fit);
+    }
     best.points = denoise_output(y, std::move(lowpassed_y), triangles, surface,
                                  best.noise, sigma, best.normal_motion ? &*best.normal_motion : nullptr,
                                  best.motion_bound ? &*best.motion_bound : nullptr, &best.volume);

@@ -1,5 +1,5 @@
 #include "core/denoise/normal_fit.h"
-#include "core/mesh/components.h"
+#include "core/mesh/surface_measures.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,43 +8,26 @@
 
 namespace geofilter {
 
-Points fit_to_filtered_normals(const Points& points, const Triangles& triangles, NormalFitStrength strength,
-                               const Eigen::Vector3d* along) {
-    const Eigen::Index faces = triangles.rows();
-    const std::size_t face_count = static_cast<std::size_t>(faces);
-    const VertexFaces around = vertex_faces(triangles, points.rows());
+Points fit_to_filtered_normals(const Points& points, const Triangles& triangles, const FaceNeighbourhoods& neighbourhoods,
+                               NormalFitStrength strength, const Eigen::Vector3d* along) {
+    const auto face_count = static_cast<std::size_t>(triangles.rows());
     // Positions and normals one row per element, contiguous: the rounds below read each
     // neighbour's three coordinates together (Points is stored by column).
     std::vector<Eigen::Vector3d> at(static_cast<std::size_t>(points.rows()));
     for (Eigen::Index v = 0; v < points.rows(); ++v) at[static_cast<std::size_t>(v)] = points.row(v).transpose();
     const auto corner = [&](std::size_t f, int k) -> Eigen::Vector3d& { return at[static_cast<std::size_t>(triangles(static_cast<Eigen::Index>(f), k))]; };
+    const auto face_normal_now = [&](std::size_t f) { return twice_area_normal(corner(f, 0), corner(f, 1), corner(f, 2)); };
     std::vector<Eigen::Vector3d> normal(face_count), smoothed(face_count);
     std::vector<double> area(face_count);
     for (std::size_t f = 0; f < face_count; ++f) {
-        const Eigen::Vector3d n = (corner(f, 1) - corner(f, 0)).cross(corner(f, 2) - corner(f, 0));
+        const Eigen::Vector3d n = face_normal_now(f);
         const double length = n.norm();
         area[f] = 0.5 * length;
         normal[f] = length > 0 ? Eigen::Vector3d(n / length) : Eigen::Vector3d::Zero();
     }
     const std::vector<Eigen::Vector3d> input_normal = normal;
-    // The faces sharing a vertex with each face, once each.
-    std::vector<int> start(face_count + 1, 0), neighbour;
-    neighbour.reserve(14 * face_count);
-    {
-        std::vector<int> seen(face_count, -1);
-        for (std::size_t f = 0; f < face_count; ++f) {
-            for (int k = 0; k < 3; ++k) {
-                const auto v = static_cast<std::size_t>(triangles(static_cast<Eigen::Index>(f), k));
-                for (int i = around.start[v]; i < around.start[v + 1]; ++i) {
-                    const int g = around.face[static_cast<std::size_t>(i)];
-                    if (seen[static_cast<std::size_t>(g)] == static_cast<int>(f)) continue;
-                    seen[static_cast<std::size_t>(g)] = static_cast<int>(f);
-                    neighbour.push_back(g);
-                }
-            }
-            start[f + 1] = static_cast<int>(neighbour.size());
-        }
-    }
+    const std::vector<int>& start = neighbourhoods.start;
+    const std::vector<int>& neighbour = neighbourhoods.face;
     const double width = 1 - std::cos(normal_fit_angle_degrees * M_PI / 180);
     const auto smooth_block = [&](std::size_t first, std::size_t last) {
         for (std::size_t f = first; f < last; ++f) {
@@ -96,8 +79,7 @@ Points fit_to_filtered_normals(const Points& points, const Triangles& triangles,
     for (bool reverted = true; reverted;) {
         reverted = false;
         for (std::size_t f = 0; f < face_count; ++f) {
-            const Eigen::Vector3d n = (corner(f, 1) - corner(f, 0)).cross(corner(f, 2) - corner(f, 0));
-            if (n.dot(input_normal[f]) >= 0) continue;
+            if (face_normal_now(f).dot(input_normal[f]) >= 0) continue;
             for (int k = 0; k < 3; ++k) {
                 const Eigen::Index v = triangles(static_cast<Eigen::Index>(f), k);
                 corner(f, k) = points.row(v).transpose();

@@ -1,6 +1,7 @@
 // Fitting the surface to its own face normals, smoothed edge-aware.
 #pragma once
 
+#include "core/mesh/components.h"
 #include "core/types.h"
 
 namespace geofilter {
@@ -37,7 +38,9 @@ constexpr NormalFitStrength normal_fit_strengths[] = {{1, 5}, {2, 10}, {3, 10}, 
 // With `along` (a unit direction), every vertex round moves the vertices along it only, by
 // their step's part along it: for noise along one direction, which left the vertices' place
 // across it right.
-Points fit_to_filtered_normals(const Points& points, const Triangles& triangles, NormalFitStrength strength,
-                               const Eigen::Vector3d* along = nullptr);
+// `neighbourhoods` is faces_sharing_a_vertex(triangles, points.rows()): made once for the
+// several fits Denoise scores on the same mesh.
+Points fit_to_filtered_normals(const Points& points, const Triangles& triangles, const FaceNeighbourhoods& neighbourhoods,
+                               NormalFitStrength strength, const Eigen::Vector3d* along = nullptr);
 
 } // namespace geofilter

@@ -7,15 +7,6 @@
 
 namespace geofilter {
 
-namespace {
-
-Eigen::RowVector3d face_normal(const Points& p, const Triangles& t, Eigen::Index f) {
-    const Eigen::RowVector3d a = p.row(t(f, 0));
-    return (p.row(t(f, 1)) - a).cross(p.row(t(f, 2)) - a);
-}
-
-} // namespace
-
 Points keep_normal_motion(const Points& input, const Points& smoothed, const Triangles& triangles,
                           double max_turn_degrees, NormalMotionReport* report) {
     const Eigen::MatrixXd normals = vertex_normals(smoothed, triangles);
@@ -30,8 +21,8 @@ Points keep_normal_motion(const Points& input, const Points& smoothed, const Tri
     }
 
     const double min_cos = std::cos(max_turn_degrees * 3.14159265358979323846 / 180);
-    std::vector<Eigen::RowVector3d> reference(static_cast<std::size_t>(triangles.rows()));
-    for (Eigen::Index f = 0; f < triangles.rows(); ++f) reference[static_cast<std::size_t>(f)] = face_normal(smoothed, triangles, f);
+    std::vector<Eigen::Vector3d> reference(static_cast<std::size_t>(triangles.rows()));
+    for (Eigen::Index f = 0; f < triangles.rows(); ++f) reference[static_cast<std::size_t>(f)] = twice_area_normal(smoothed, triangles, f);
     // A face of which every vertex is back at the smoother's position equals its reference,
     // so each round either sends a vertex back for good or ends: at most one round per vertex.
     // Only a face with a vertex sent back in the last round can have turned since: the first
@@ -45,8 +36,8 @@ Points keep_normal_motion(const Points& input, const Points& smoothed, const Tri
         ++r.rounds;
         std::vector<Eigen::Index> back;
         for (Eigen::Index f : to_check) {
-            const Eigen::RowVector3d& before = reference[static_cast<std::size_t>(f)];
-            const Eigen::RowVector3d after = face_normal(out, triangles, f);
+            const Eigen::Vector3d& before = reference[static_cast<std::size_t>(f)];
+            const Eigen::Vector3d after = twice_area_normal(out, triangles, f);
             const double scale = before.norm() * after.norm();
             if (scale == 0 || after.dot(before) >= min_cos * scale) continue;
             for (int k = 0; k < 3; ++k)

@@ -36,7 +36,7 @@ double volume_of(const Points& p, const Triangles& t, const std::vector<Eigen::I
 
 double area_of(const Points& p, const Triangles& t, const std::vector<Eigen::Index>& faces) {
     double a = 0;
-    for (Eigen::Index f : faces) a += (p.row(t(f, 1)) - p.row(t(f, 0))).cross(p.row(t(f, 2)) - p.row(t(f, 0))).norm() / 2;
+    for (Eigen::Index f : faces) a += face_area(p, t, f);
     return a;
 }
 

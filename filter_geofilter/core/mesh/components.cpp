@@ -80,6 +80,28 @@ VertexFaces vertex_faces(const Triangles& triangles, Eigen::Index n, const std::
     return vf;
 }
 
+FaceNeighbourhoods faces_sharing_a_vertex(const Triangles& triangles, Eigen::Index vertex_count) {
+    const VertexFaces around = vertex_faces(triangles, vertex_count);
+    const auto faces = static_cast<std::size_t>(triangles.rows());
+    FaceNeighbourhoods out;
+    out.start.assign(faces + 1, 0);
+    out.face.reserve(14 * faces);
+    std::vector<int> seen(faces, -1);
+    for (std::size_t f = 0; f < faces; ++f) {
+        for (int k = 0; k < 3; ++k) {
+            const auto v = static_cast<std::size_t>(triangles(static_cast<Eigen::Index>(f), k));
+            for (int i = around.start[v]; i < around.start[v + 1]; ++i) {
+                const int g = around.face[static_cast<std::size_t>(i)];
+                if (seen[static_cast<std::size_t>(g)] == static_cast<int>(f)) continue;
+                seen[static_cast<std::size_t>(g)] = static_cast<int>(f);
+                out.face.push_back(g);
+            }
+        }
+        out.start[f + 1] = static_cast<int>(out.face.size());
+    }
+    return out;
+}
+
 VertexNeighbours vertex_neighbours(const Triangles& triangles, Eigen::Index vertex_count) {
     VertexNeighbours out;
     out.start.assign(static_cast<size_t>(vertex_count) + 1, 0);

@@ -29,6 +29,13 @@ struct VertexFaces {
 };
 VertexFaces vertex_faces(const Triangles& triangles, Eigen::Index vertex_count, const std::vector<bool>& skip_face = {});
 
+// The faces sharing at least one vertex with each face, itself included, once each: face f's
+// are face[start[f]] .. face[start[f + 1] - 1].
+struct FaceNeighbourhoods {
+    std::vector<int> start, face;
+};
+FaceNeighbourhoods faces_sharing_a_vertex(const Triangles& triangles, Eigen::Index vertex_count);
+
 // How many labels `labels` uses.
 int component_count(const std::vector<int>& labels);
 

@@ -5,10 +5,8 @@ namespace geofilter {
 Eigen::MatrixXd vertex_normals(const Points& points, const Triangles& triangles) {
     Eigen::MatrixXd normal = Eigen::MatrixXd::Zero(points.rows(), 3);
     for (Eigen::Index f = 0; f < triangles.rows(); ++f) {
-        const Eigen::RowVector3d a = points.row(triangles(f, 0)), b = points.row(triangles(f, 1)),
-                                 c = points.row(triangles(f, 2));
-        const Eigen::RowVector3d twice_area_normal = (b - a).cross(c - a);
-        for (int k = 0; k < 3; ++k) normal.row(triangles(f, k)) += twice_area_normal;
+        const Eigen::RowVector3d weighted = twice_area_normal(points, triangles, f).transpose();
+        for (int k = 0; k < 3; ++k) normal.row(triangles(f, k)) += weighted;
     }
     for (Eigen::Index v = 0; v < normal.rows(); ++v) {
         const double length = normal.row(v).norm();
@@ -20,9 +18,7 @@ Eigen::MatrixXd vertex_normals(const Points& points, const Triangles& triangles)
 Eigen::VectorXd vertex_areas(const Points& points, const Triangles& triangles) {
     Eigen::VectorXd area = Eigen::VectorXd::Zero(points.rows());
     for (Eigen::Index f = 0; f < triangles.rows(); ++f) {
-        const Eigen::RowVector3d a = points.row(triangles(f, 0)), b = points.row(triangles(f, 1)),
-                                 c = points.row(triangles(f, 2));
-        const double third_of_area = (b - a).cross(c - a).norm() / 6;
+        const double third_of_area = twice_area_normal(points, triangles, f).norm() / 6;
         for (int k = 0; k < 3; ++k) area[triangles(f, k)] += third_of_area;
     }
     return area;
