@@ -459,7 +459,20 @@ def noise_volume_spread(case, components, volumes):
     return out
 
 
-def measure(v, case, truth_normals, truth_volumes, components):
+def pleats(v, f):
+    """The faces that turn against the faces around them: a face whose normal points away from the
+    sum of the area-weighted normals of the faces sharing a vertex with it (one term per vertex
+    shared, itself left out). A scan can hold a few such pleats; a smoother that unfolds one is
+    counted as folding it, since the truth's own face points the other way."""
+    area_normal = c.face_normals(v, f, unit=False)
+    at_vertex = np.zeros_like(v)
+    for k in range(3):
+        np.add.at(at_vertex, f[:, k], area_normal)
+    around = at_vertex[f].sum(axis=1) - 3 * area_normal
+    return np.einsum("ij,ij->i", area_normal, around) < 0
+
+
+def measure(v, case, truth_normals, truth_volumes, components, truth_pleats):
     f = case["f"]
     d = np.linalg.norm(v - case["truth"], axis=1)
     fn = c.face_normals(v, f)
@@ -467,7 +480,7 @@ def measure(v, case, truth_normals, truth_volumes, components):
     vols = closed_volumes(v, components)
     dvol = [100 * (vols[k] - t) / abs(t) for k, t in truth_volumes.items() if k in vols and t != 0]
     return {"rms": float(np.sqrt(np.mean(d ** 2))), "nerr": float(ang.mean()), "folded": int(np.sum(ang > 90)),
-            "dvol": float(max(dvol, key=abs)) if dvol else None}
+            "folded_pleats": int(np.sum((ang > 90) & truth_pleats)), "dvol": float(max(dvol, key=abs)) if dvol else None}
 
 
 # ---------------------------------------------------------------------------------------------
@@ -542,7 +555,8 @@ def run_case(case, work, denoise_only, cloud=False):
     tn = c.face_normals(case["truth"], f)
     closed = closed_components(f, len(case["truth"]))
     tvol = closed_volumes(case["truth"], closed)
-    m = lambda v: measure(v, case, tn, tvol, closed)
+    truth_pleats = pleats(case["truth"], f)
+    m = lambda v: measure(v, case, tn, tvol, closed, truth_pleats)
     rows = {"input": m(noisy)}
     t = time.perf_counter()
     if denoise_only:
@@ -590,6 +604,16 @@ def page(results, half, seeds):
                 spread = max((x for x in r["volume_noise"].values() if x is not None), default=None)
                 L.append(f"- {r['name']}: {r['rows']['denoise']['dvol']:+.2f} %, input {r['rows']['input']['dvol']:+.2f} %"
                          + (f", noise ±{spread:.2f} %" if spread is not None else ""))
+        missed_folds = [r for r in rs if not r["floors"].get("folds", True)]
+        if missed_folds:
+            L += ["", "Where the folds floor is missed: faces turned more than 90° from the truth's, for Denoise, its input"
+                  " and default Taubin, and how many of each are pleats of the truth (faces the truth itself turns against"
+                  " the faces around them: a smoother that unfolds one is counted as folding it).\n"]
+            for r in missed_folds:
+                w = r["rows"]
+                L.append("- " + r["name"] + ": " + ", ".join(
+                    f"{label} {w[key]['folded']} ({w[key].get('folded_pleats', 0)} pleats)"
+                    for label, key in (("Denoise", "denoise"), ("input", "input"), ("Taubin", f"taubin:{cd.DEFAULT['taubin']}"))))
         L += ["", f"## {kind}: per family (median and worst of Denoise's RMS relative to the input, and to default Taubin)\n",
               "| family | cases | Denoise / input, median | worst | Denoise / Taubin default, median | worst | floors missed |",
               "|---|---:|---:|---:|---:|---:|---|"]
