@@ -502,7 +502,7 @@ def denoise_python(case, cloud=False):
 def denoise_log_lines(log):
     """The lines of Denoise's log that say which path ran and what it chose."""
     keys = ("pattern of bumps", "cutoff sc", "noise model", "no lowpass scored below", "fell back",
-            "then fitted to its face normals")
+            "then fitted to its face normals", "the pattern did not explain")
     return [line for line in log if any(k in line for k in keys)]
 
 

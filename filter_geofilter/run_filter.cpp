@@ -576,11 +576,13 @@ RunOutput filter_surface(const FilterSpec& spec, const ParameterValues& given, c
         }
         out.points = apply_filter(input.points, input.triangles, out.transfer, options, &out.report, input.cache);
         if (spec.kind == FilterKind::Denoise && out.feature) {
-            const LowpassForBump lowpass_for = [&](double radius) {
+            const LowpassForBump lowpass_for = [&](const Points& at, double radius) {
                 FeatureEllipsoid bump = *out.feature;
                 bump.radius = radius;
                 const DenoiseDesign d = design_denoise_from_bump(bump, shape_of(spec, values), order_of(spec, values), out.op);
-                return LowpassedForBump{apply_filter(input.points, input.triangles, d.g, options, nullptr, input.cache), d.g};
+                // The cache holds the input's mesh, for MeshLab's next preview.
+                FilterCache* cache = &at == &input.points ? input.cache : nullptr;
+                return LowpassedForBump{apply_filter(at, input.triangles, d.g, options, nullptr, cache), d.g};
             };
             const SelectedBumpDenoise bump = denoise_selected_bump(input.points, out.points, input.triangles,
                                                                    input.selected_faces, out.feature->radius,
@@ -624,6 +626,15 @@ RunOutput filter_surface(const FilterSpec& spec, const ParameterValues& given, c
                                        ? " (fitted again under the lowpass cut for the fitted radius " +
                                              format_number(bump.pattern_radius) + ", narrower than the selection)"
                                        : std::string()));
+                out.log.push_back(
+                    (bump.misfit_lowpassed ? std::string("then what the pattern did not explain was lowpassed away")
+                                           : std::string("what the pattern did not explain was left: the lowpass that would take it")) +
+                    " (cut at radius " + format_number(denoise_misfit_cut_factor * bump.pattern_radius) + " = " +
+                    format_number(denoise_misfit_cut_factor) + " x the pattern's radius, along the normals) changes the"
+                    " enclosed volume by " + format_number(100 * bump.misfit_volume_change) + " %" +
+                    (bump.misfit_lowpassed ? std::string()
+                                           : " (more than " + format_number(100 * denoise_flat_max_volume_change) +
+                                                 " %): it would take parts of the surface itself as small as the bumps"));
                 break;
             case SelectedBumpOutcome::FlatLowpass: {
                 const std::string cut = bump.flat_radius < out.feature->radius

@@ -78,7 +78,7 @@ SelectedBumpDenoise denoise_selected_bump(const Points& input, const Points& low
     // (tuning half: a sphere's Gaussian pattern 0.583e-3 -> 0.534e-3 RMS, a torus's unchanged).
     out.pattern_radius = bump_radius;
     if (out.pattern.removed && out.pattern.width < bump_radius && lowpass_for) {
-        const LowpassedForBump narrower = lowpass_for(out.pattern.width);
+        const LowpassedForBump narrower = lowpass_for(input, out.pattern.width);
         BumpPatternReport again;
         Points refitted = remove_bump_pattern(input, narrower.points, triangles, bump_faces, out.pattern.width, narrower.g,
                                               field_options, &again);
@@ -90,6 +90,20 @@ SelectedBumpDenoise denoise_selected_bump(const Points& input, const Points& low
     }
     if (out.pattern.removed) {
         out.outcome = SelectedBumpOutcome::PatternRemoved;
+        if (lowpass_for) {
+            // Tuning half, 12 cases that removed a pattern: the mean normal error from the truth
+            // fell from 0.31-3.73 to 0.08-1.48 degrees, the RMS by 6-64 %, the volume moved by
+            // at most 0.001 %.
+            const double cut_as_bump = denoise_misfit_cut_factor / denoise_radius_factor * out.pattern_radius;
+            const Points smoothed = keep_normal_motion(out.points, lowpass_for(out.points, cut_as_bump).points, triangles);
+            VolumeRestoreReport volume;
+            restore_volume(out.points, smoothed, triangles, &volume);
+            out.misfit_volume_change = volume.largest_change;
+            if (!(volume.closed_components > 0 && volume.largest_change > denoise_flat_max_volume_change)) {
+                out.points = smoothed;
+                out.misfit_lowpassed = true;
+            }
+        }
     } else if (out.removed_detail > bump_min_height * bump_radius) {
         // Bumps stand along the normals; the lowpass's sideways motion removes none of them and
         // moves a free boundary inwards. Faces turned by more than normal_motion_max_turn_degrees
@@ -102,7 +116,7 @@ SelectedBumpDenoise denoise_selected_bump(const Points& input, const Points& low
         out.flat_radius = bump_radius;
         Points narrower;
         if (out.pattern.width > 0 && out.pattern.width < bump_radius && lowpass_for) {
-            narrower = lowpass_for(out.pattern.width).points;
+            narrower = lowpass_for(input, out.pattern.width).points;
             out.flat_radius = out.pattern.width;
         }
         const Points flat = keep_normal_motion(input, narrower.rows() ? narrower : lowpassed, triangles);

@@ -83,6 +83,10 @@ struct SelectedBumpDenoise {
     double flat_radius = 0;         // the bump radius the flat lowpass was cut for (0: none was made)
     double pattern_radius = 0;      // the bump radius the removed pattern was fitted under (the selection's, or the fitted width when narrower)
     double base_offset = 0;         // how far the flat lowpass was moved back to the base (to_base_level)
+    // After a pattern was removed: whether its misfit was lowpassed away (denoise_misfit_cut_factor),
+    // and that lowpass's largest relative change of a closed component's volume.
+    bool misfit_lowpassed = false;
+    double misfit_volume_change = 0;
 };
 
 // Whether the lowpass for a selected bump holds the mesh's open boundary in place: whenever
@@ -92,12 +96,22 @@ struct SelectedBumpDenoise {
 bool denoise_bump_holds_boundary(const Triangles& triangles, Eigen::Index vertex_count);
 
 // The Denoise lowpass designed for a bump of `radius` (design_denoise_from_bump with the
-// selection's shape, order and operator): its transfer function and the input it lowpassed.
+// selection's shape, order and operator): its transfer function and `points` lowpassed by it.
 struct LowpassedForBump {
     Points points;
     TransferFunction g;
 };
-using LowpassForBump = std::function<LowpassedForBump(double radius)>;
+using LowpassForBump = std::function<LowpassedForBump(const Points& points, double radius)>;
+
+// A fitted pattern leaves its misfit behind: elements of other sizes and profiles, peaks the
+// fit did not take, each at about the pattern's own size. A lowpass cut at this many times
+// the pattern's radius, applied after the pattern is subtracted, takes that misfit off while
+// the pattern's mean height, which such a lowpass keeps, is already gone with the pattern.
+// Chosen on the tuning half of experiments/generalize_denoise (docs/denoise.md): on its 12
+// cases that removed a pattern, 1.5 and 2 (the flat fallback's cut) each did best on six with
+// the same total; 1.5 brought every one closer to the truth, 2 took one farther, 1 was behind
+// both. Any cut from 1 to 2 helped all but that one.
+constexpr double denoise_misfit_cut_factor = 1.5;
 
 // Denoise's rule for one selected bump (`bump_faces`, measured radius `bump_radius`):
 // `lowpassed` is the input lowpassed by `g` (design_denoise_from_bump, applied with
@@ -112,7 +126,9 @@ using LowpassForBump = std::function<LowpassedForBump(double radius)>;
 // radius and the width of the profile fitted to the selected bump (made by `lowpass_for`
 // when that is smaller): a user's selection is a footprint, often wider than the bump. For
 // the same reason a removed pattern whose profile is narrower than the selection is fitted
-// again under the lowpass cut for that width.
+// again under the lowpass cut for that width. A removed pattern's misfit is then lowpassed
+// (denoise_misfit_cut_factor), along the normals only, unless that lowpass too would change
+// a closed component's volume by more than denoise_flat_max_volume_change.
 SelectedBumpDenoise denoise_selected_bump(const Points& input, const Points& lowpassed, const Triangles& triangles,
                                           const std::vector<int>& bump_faces, double bump_radius,
                                           const TransferFunction& g, const FilterOptions& options,
