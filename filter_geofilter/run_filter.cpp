@@ -611,7 +611,7 @@ RunOutput filter_surface(const FilterSpec& spec, const ParameterValues& given, c
                                        " RMS across the selection (the threshold: " + format_number(bump_min_height) +
                                        " of its radius, " + format_number(bump_min_height * out.feature->radius) + ")";
             switch (bump.outcome) {
-            case SelectedBumpOutcome::PatternRemoved:
+            case SelectedBumpOutcome::PatternRemoved: {
                 out.log.push_back(std::string("pattern of bumps removed (the selected one points ") +
                                   (pattern.side > 0 ? "outwards" : "inwards") + "): " + std::to_string(pattern.bumps) +
                                   " bumps of " + std::to_string(pattern.candidates) + " peaks" +
@@ -626,16 +626,19 @@ RunOutput filter_surface(const FilterSpec& spec, const ParameterValues& given, c
                                        ? " (fitted again under the lowpass cut for the fitted radius " +
                                              format_number(bump.pattern_radius) + ", narrower than the selection)"
                                        : std::string()));
-                out.log.push_back(
-                    (bump.misfit_lowpassed ? std::string("then what the pattern did not explain was lowpassed away")
-                                           : std::string("what the pattern did not explain was left: the lowpass that would take it")) +
-                    " (cut at radius " + format_number(denoise_misfit_cut_factor * bump.pattern_radius) + " = " +
-                    format_number(denoise_misfit_cut_factor) + " x the pattern's radius, along the normals) changes the"
-                    " enclosed volume by " + format_number(100 * bump.misfit_volume_change) + " %" +
-                    (bump.misfit_lowpassed ? std::string()
-                                           : " (more than " + format_number(100 * denoise_flat_max_volume_change) +
-                                                 " %): it would take parts of the surface itself as small as the bumps"));
+                const std::string misfit_cut = "cut at radius " + format_number(denoise_misfit_cut_factor * bump.pattern_radius) +
+                                               " = " + format_number(denoise_misfit_cut_factor) +
+                                               " x the pattern's radius, along the normals";
+                out.log.push_back(bump.misfit_lowpassed
+                                      ? "then what the pattern did not explain was lowpassed away (" + misfit_cut +
+                                            "), moving the enclosed volume by " + format_number(100 * bump.misfit_volume_change) + " %"
+                                      : "what the pattern did not explain was left as it is: the lowpass that would take it (" +
+                                            misfit_cut + ") would change the enclosed volume by " +
+                                            format_number(100 * bump.misfit_volume_change) + " % (more than " +
+                                            format_number(100 * denoise_flat_max_volume_change) +
+                                            " %), taking parts of the surface itself as small as the bumps");
                 break;
+            }
             case SelectedBumpOutcome::FlatLowpass: {
                 const std::string cut = bump.flat_radius < out.feature->radius
                                             ? " (cut for the fitted width " + format_number(bump.flat_radius) +
