@@ -586,6 +586,35 @@ TEST(BumpPattern, WhatThePatternLeavesIsLowpassedAway) {
     EXPECT_LT(std::abs(volume(out.points, m.bare.triangles) - bare_volume) / bare_volume, 0.001) << log;
 }
 
+TEST(BumpPattern, AMisfitLowpassThatWouldChangeTheVolumeIsNotApplied) {
+    // The guard on the misfit's lowpass, fed a lowpass that shrinks what it is given by 1 %
+    // (a closed part's volume by 3 %, as a lowpass at the bumps' size shrinks a leg as thin as
+    // them): the pattern is still removed, the shrinking is not, and its volume change is
+    // reported. The input itself (a refit under a narrower cut) gets the true lowpass.
+    const MixedSizes m = bumps_of_mixed_sizes();
+    const FilterSpec& spec = *find_filter("denoise");
+    const ParameterValues values = default_values(spec, true);
+    const RunOutput run = run_filter(spec, values, {m.bumpy, m.bare.triangles, m.selected, {}});
+    ASSERT_TRUE(run.feature.has_value());
+    FilterOptions options = filter_options(spec, values);
+    options.op = run.op;
+    const LowpassForBump shrinking = [&](const Points& at, double radius) {
+        FeatureEllipsoid bump = *run.feature;
+        bump.radius = radius;
+        const DenoiseDesign d = design_denoise_from_bump(bump, FeatureShape::Sphere, 4, run.op);
+        if (at.rows() == m.bumpy.rows() && at == m.bumpy) return LowpassedForBump{apply_filter(at, m.bare.triangles, d.g, options), d.g};
+        return LowpassedForBump{Points(0.99 * at), d.g};
+    };
+    const Points lowpassed = apply_filter(m.bumpy, m.bare.triangles, run.transfer, options);
+    const SelectedBumpDenoise out = denoise_selected_bump(m.bumpy, lowpassed, m.bare.triangles, m.selected, run.feature->radius,
+                                                          run.transfer, options, shrinking);
+    ASSERT_EQ(out.outcome, SelectedBumpOutcome::PatternRemoved);
+    EXPECT_FALSE(out.misfit_lowpassed);
+    EXPECT_NEAR(out.misfit_volume_change, 1 - std::pow(0.99, 3), 2e-3);
+    EXPECT_LT(std::abs(volume(out.points, m.bare.triangles) - bare_volume) / bare_volume, 0.001);
+    EXPECT_LT(rms_distance(out.points, m.bare.points), 0.18 * rms_distance(m.bumpy, m.bare.points));
+}
+
 TEST(BumpPattern, SharpRimmedDentsGetAProfileLearnedFromTheSelection) {
     // Spherical-cap dents sqrt(1 - (d / 1.5 rho_i)^2) 0.24 rho_i deep on a torus, radii spread
     // +-30 % about 0.045, covering a fifth of it; four patterns. A Gaussian profile leaves
