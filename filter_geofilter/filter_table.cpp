@@ -214,7 +214,8 @@ FilterSpec denoise() {
             "Removes noise with nothing to set. Nothing selected: a scan's per-vertex sampling noise goes, with the"
             " lowpass the filter picks on the mesh by its estimated distance to the noise-free surface (Stein's unbiased"
             " risk estimate), then fitted to its face normals smoothed across faces but not across sharp edges where"
-            " that scores closer still; one bump selected: the bumps like it go and the rest of the surface stays;"
+            " that scores closer still; one bump selected: the bumps like it go, with what is left of them at their size,"
+            " and larger shapes stay;"
             " with Where to filter set, only that region is denoised. The log says what was measured and chosen, and why.",
             p};
 }
