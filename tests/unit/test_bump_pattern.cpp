@@ -543,6 +543,23 @@ MixedSizes bumps_of_mixed_sizes() {
     return out;
 }
 
+// Denoise run on the mixed sizes through run_filter, its log as one text for failure messages,
+// and the filter options it ran with (on its operator) for the core's rule run beside it.
+struct MixedSizesRun {
+    RunOutput out;
+    std::string log;
+    FilterOptions options;
+};
+
+MixedSizesRun denoise_mixed_sizes(const MixedSizes& m) {
+    const FilterSpec& spec = *find_filter("denoise");
+    const ParameterValues values = default_values(spec, true);
+    MixedSizesRun r{run_filter(spec, values, {m.bumpy, m.bare.triangles, m.selected, {}}), {}, filter_options(spec, values)};
+    for (const auto& line : r.out.log) r.log += line + "\n";
+    r.options.op = r.out.op;
+    return r;
+}
+
 } // namespace
 
 TEST(BumpPattern, ElementsOfMixedSizesAreRemovedToo) {
@@ -550,10 +567,7 @@ TEST(BumpPattern, ElementsOfMixedSizesAreRemovedToo) {
     // the profile at a few sizes. Checked against the bare sphere (at one width only: RMS 0.25
     // of the input's, volume 0.18 % off; measured now 0.12 and 0.06 %).
     const MixedSizes m = bumps_of_mixed_sizes();
-    const FilterSpec& spec = *find_filter("denoise");
-    const RunOutput out = run_filter(spec, default_values(spec, true), {m.bumpy, m.bare.triangles, m.selected, {}});
-    std::string log;
-    for (const auto& line : out.log) log += line + "\n";
+    const auto [out, log, options] = denoise_mixed_sizes(m);
     EXPECT_TRUE(logged(out, "pattern of bumps removed")) << log;
     EXPECT_LT(rms_distance(out.points, m.bare.points), 0.18 * rms_distance(m.bumpy, m.bare.points)) << log;
     EXPECT_LT(std::abs(volume(out.points, m.bare.triangles) - bare_volume) / bare_volume, 0.001) << log;
@@ -566,15 +580,9 @@ TEST(BumpPattern, WhatThePatternLeavesIsLowpassedAway) {
     // vertices end no farther, and the volume stays as the pattern left it (it has no mean
     // height left for the lowpass to keep or take).
     const MixedSizes m = bumps_of_mixed_sizes();
-    const FilterSpec& spec = *find_filter("denoise");
-    const ParameterValues values = default_values(spec, true);
-    const RunOutput out = run_filter(spec, values, {m.bumpy, m.bare.triangles, m.selected, {}});
-    std::string log;
-    for (const auto& line : out.log) log += line + "\n";
+    const auto [out, log, options] = denoise_mixed_sizes(m);
     ASSERT_TRUE(logged(out, "pattern of bumps removed")) << log;
     ASSERT_TRUE(logged(out, "then what the pattern did not explain was lowpassed away")) << log;
-    FilterOptions options = filter_options(spec, values);
-    options.op = out.op;
     const Points lowpassed = apply_filter(m.bumpy, m.bare.triangles, out.transfer, options);
     const SelectedBumpDenoise alone = denoise_selected_bump(m.bumpy, lowpassed, m.bare.triangles, m.selected, out.feature->radius,
                                                             out.transfer, options, nullptr);
@@ -592,12 +600,10 @@ TEST(BumpPattern, AMisfitLowpassThatWouldChangeTheVolumeIsNotApplied) {
     // them): the pattern is still removed, the shrinking is not, and its volume change is
     // reported. The input itself (a refit under a narrower cut) gets the true lowpass.
     const MixedSizes m = bumps_of_mixed_sizes();
-    const FilterSpec& spec = *find_filter("denoise");
-    const ParameterValues values = default_values(spec, true);
-    const RunOutput run = run_filter(spec, values, {m.bumpy, m.bare.triangles, m.selected, {}});
-    ASSERT_TRUE(run.feature.has_value());
-    FilterOptions options = filter_options(spec, values);
-    options.op = run.op;
+    const MixedSizesRun mixed = denoise_mixed_sizes(m);
+    const RunOutput& run = mixed.out;
+    const FilterOptions& options = mixed.options;
+    ASSERT_TRUE(run.feature.has_value()) << mixed.log;
     const LowpassForBump shrinking = [&](const Points& at, double radius) {
         FeatureEllipsoid bump = *run.feature;
         bump.radius = radius;
