@@ -640,13 +640,17 @@ RunOutput filter_surface(const FilterSpec& spec, const ParameterValues& given, c
                 break;
             }
             case SelectedBumpOutcome::FlatLowpass: {
-                const std::string cut = bump.flat_radius < out.feature->radius
-                                            ? " (cut for the fitted width " + format_number(bump.flat_radius) +
-                                                  ", narrower than the selection)"
-                                            : std::string();
+                const std::string cut =
+                    bump.flat_for_fitted_width
+                        ? " (cut for the fitted width " + format_number(bump.flat_radius) + ", narrower than the selection)"
+                    : bump.flat_radius < out.feature->radius
+                        ? " (cut at radius " + format_number(denoise_radius_factor * bump.flat_radius) + " = " +
+                              format_number(denoise_flat_footprint_cut_factor) +
+                              " x the selection's radius: a selection is the bump's footprint, wider than the bump)"
+                        : std::string();
                 const std::string why = "fell back to the flat lowpass" + cut + " because " + refused + "; " + detail +
-                                        ": bumps of this size and smaller were smoothed away (the lowpass moved the enclosed"
-                                        " volume by " + format_number(100 * bump.flat_volume_change) + " %), and the surface was"
+                                        ": bumps of this size and smaller were smoothed away (the lowpass at the paper's cut"
+                                        " for it moved the enclosed volume by " + format_number(100 * bump.flat_volume_change) + " %), and the surface was"
                                         " moved back to where they stand on it, by the median of what the lowpass removed along"
                                         " the normals: " + format_number(bump.base_offset);
                 out.log.push_back("pattern of bumps: " + why);

@@ -104,6 +104,22 @@ bool logged(const RunOutput& out, const std::string& text) {
     return false;
 }
 
+// The flat fallback where the fit found no width narrower than the selection: the lowpass
+// designed for a bump denoise_flat_footprint_cut_factor / denoise_radius_factor times the
+// measured one (cut at that factor times the selection's radius), its motion along the
+// normals, moved back to the base level.
+Points flat_lowpass_for_footprint(const Points& points, const Triangles& triangles, const std::vector<int>& selected) {
+    const FilterSpec& spec = *find_filter("denoise");
+    const ParameterValues values = default_values(spec, true);
+    FeatureEllipsoid footprint = measure_feature(points, triangles, selected);
+    footprint.radius *= denoise_flat_footprint_cut_factor / denoise_radius_factor;
+    const RunOutput cut = design_run(spec, values, footprint);
+    FilterOptions options = filter_options(spec, values);
+    options.op = cut.op;
+    return to_base_level(points, keep_normal_motion(points, apply_filter(points, triangles, cut.transfer, options), triangles),
+                         triangles);
+}
+
 } // namespace
 
 TEST(BumpPattern, DenoiseFromOneSelectedBumpRemovesThePatternAndItsVolume) {
@@ -141,7 +157,8 @@ TEST(BumpPattern, ASurfaceWhoseOwnDetailDominatesGetsTheFlatLowpass) {
     // Per-vertex noise as large as the "bump": no pattern explains the selection. Returning the
     // input would remove nothing the user asked to remove; the lowpass at the selected scale,
     // which does, is returned (its motion along the normals, as Denoise keeps it, moved back
-    // to the base level: to_base_level), and the warning says why.
+    // to the base level: to_base_level), and the warning says why. No narrower width is
+    // fitted here, so the lowpass is cut for the selection as a footprint.
     BumpySphere s = bumpy_sphere(1, 0.2, 1, Profile::Gaussian, 4);
     std::mt19937 random(3);
     std::normal_distribution<double> gauss(0.0, 0.01);
@@ -149,15 +166,12 @@ TEST(BumpPattern, ASurfaceWhoseOwnDetailDominatesGetsTheFlatLowpass) {
     const FilterSpec& spec = *find_filter("denoise");
     const ParameterValues values = default_values(spec, true);
     const RunOutput out = run_filter(spec, values, {s.mesh.points, s.mesh.triangles, s.one_bump, {}});
-    FilterOptions options = filter_options(spec, values);
-    options.op = out.op;
-    const Points flat = keep_normal_motion(s.mesh.points, apply_filter(s.mesh.points, s.mesh.triangles, out.transfer, options),
-                                           s.mesh.triangles);
-    EXPECT_EQ(out.points, to_base_level(s.mesh.points, flat, s.mesh.triangles));
+    EXPECT_EQ(out.points, flat_lowpass_for_footprint(s.mesh.points, s.mesh.triangles, s.one_bump));
     EXPECT_NE(out.points, s.mesh.points);
     std::string log;
     for (const auto& line : out.log) log += line + "\n";
-    EXPECT_TRUE(logged(out, "fell back to the flat lowpass because the selected bump is not one of a pattern")) << log;
+    EXPECT_TRUE(logged(out, "x the selection's radius: a selection is the bump's footprint")) << log;
+    EXPECT_TRUE(logged(out, "because the selected bump is not one of a pattern")) << log;
     EXPECT_FALSE(out.report.warnings.empty());
 }
 
@@ -370,16 +384,17 @@ TEST(BumpPattern, OnAnOpenPatchTheBoundaryIsHeldAndTheResultEndsCloserToTheTruth
     EXPECT_LT(rim_drift, 0.01 * rho);
 }
 
-TEST(BumpPattern, AFlatLowpassForAWideSelectionIsCutForTheSelectedBumpsOwnWidth) {
+TEST(BumpPattern, AFlatLowpassForAWideSelectionIsCutNarrowerThanTheSelection) {
     // Raised-cosine bumps and dents on a sphere with large smooth bumps of its own, one bump
     // selected generously (faces out to 1.6 of its radius, as a user's footprint). Where the
     // Gaussian profile leaves the selected bump mostly unexplained, the flat lowpass is the
     // fallback; cut for the selection it takes the base's large bumps too (on these patterns
-    // it ended farther from the truth than the input). Five patterns; every one that takes
-    // the narrower cut must end closer to the truth than the input and than the cut for the
-    // selection, and at least one must take it.
+    // it ended farther from the truth than the input). It is cut for the fitted width where
+    // that is narrower, else for the footprint's bump. Five patterns; every one that falls
+    // back must end closer to the truth than the input and than the paper's cut for the
+    // selection, and each of the two narrower cuts must be taken at least once.
     const double rho = 0.065;
-    int narrower = 0;
+    int narrower = 0, footprint = 0;
     for (int seed = 1; seed <= 5; ++seed) {
         SCOPED_TRACE("pattern " + std::to_string(seed));
         Mesh truth = icosphere(6, 1.0);
@@ -420,8 +435,11 @@ TEST(BumpPattern, AFlatLowpassForAWideSelectionIsCutForTheSelectedBumpsOwnWidth)
         const FilterSpec& spec = *find_filter("denoise");
         const ParameterValues values = default_values(spec, true);
         const RunOutput out = run_filter(spec, values, {bumpy, truth.triangles, selected, {}});
-        if (!logged(out, "fell back to the flat lowpass (cut for the fitted width")) continue;
-        ++narrower;
+        const bool for_width = logged(out, "fell back to the flat lowpass (cut for the fitted width");
+        const bool for_footprint = logged(out, "x the selection's radius: a selection is the bump's footprint");
+        if (!for_width && !for_footprint) continue;
+        narrower += for_width;
+        footprint += for_footprint;
         FilterOptions options = filter_options(spec, values);
         options.op = out.op;
         const double for_selection =
@@ -431,7 +449,8 @@ TEST(BumpPattern, AFlatLowpassForAWideSelectionIsCutForTheSelectedBumpsOwnWidth)
         EXPECT_LT(denoised, input);
         EXPECT_LT(denoised, for_selection) << "input " << input;
     }
-    EXPECT_GE(narrower, 1) << "no pattern took the narrower cut: the test checks nothing";
+    EXPECT_GE(narrower, 1) << "no pattern took the cut for the fitted width: the test checks less than it says";
+    EXPECT_GE(footprint, 1) << "no pattern took the cut for the footprint: the test checks less than it says";
 }
 
 TEST(BumpPattern, BumpsAndDentsThatExplainTheSelectionButNotTheRestOfTheSurfaceAreNotSubtracted) {
@@ -498,10 +517,7 @@ TEST(BumpPattern, BumpsAndDentsThatExplainTheSelectionButNotTheRestOfTheSurfaceA
     EXPECT_GT(pattern.unexplained_everywhere, bump_max_unexplained) << log;
     EXPECT_FALSE(pattern.removed);
     EXPECT_TRUE(logged(out, "does not explain the rest of the surface")) << log;
-    FilterOptions options = filter_options(spec, values);
-    options.op = out.op;
-    const Points flat = keep_normal_motion(bumpy, apply_filter(bumpy, truth.triangles, out.transfer, options), truth.triangles);
-    EXPECT_EQ(out.points, to_base_level(bumpy, flat, truth.triangles)) << log;
+    EXPECT_EQ(out.points, flat_lowpass_for_footprint(bumpy, truth.triangles, selected)) << log;
 }
 
 namespace {

@@ -112,22 +112,32 @@ SelectedBumpDenoise denoise_selected_bump(const Points& input, const Points& low
         // The fitted width measures the bump itself; the selection, the user's footprint, was
         // up to twice as wide on the tuning half, and the lowpass cut for it took the base
         // surface's large bumps too (a sphere: 1.8x the input's RMS distance to the truth; cut
-        // for the fitted width, 0.61x).
-        out.flat_radius = bump_radius;
+        // for the fitted width, 0.61x). Where the fit found no narrower width, the selection
+        // is still a footprint and the cut is denoise_flat_footprint_cut_factor times it.
+        // Whether the surface has parts of its own at this size is judged on the lowpass at
+        // the paper's cut (for the fitted width or the selection): judged on the narrower
+        // footprint cut, two of the tuning half's smoothed scans passed and ended 1.5-2.1x
+        // farther from the truth than their input.
+        const bool for_fitted_width = out.pattern.width > 0 && out.pattern.width < bump_radius && lowpass_for;
         Points narrower;
-        if (out.pattern.width > 0 && out.pattern.width < bump_radius && lowpass_for) {
-            narrower = lowpass_for(input, out.pattern.width).points;
-            out.flat_radius = out.pattern.width;
-        }
-        const Points flat = keep_normal_motion(input, narrower.rows() ? narrower : lowpassed, triangles);
+        if (for_fitted_width) narrower = lowpass_for(input, out.pattern.width).points;
+        const Points& judged = for_fitted_width ? narrower : lowpassed;
         VolumeRestoreReport volume;
-        restore_volume(input, flat, triangles, &volume);
+        restore_volume(input, keep_normal_motion(input, judged, triangles), triangles, &volume);
         out.flat_volume_change = volume.largest_change;
         if (volume.closed_components > 0 && volume.largest_change > denoise_flat_max_volume_change) {
             out.outcome = SelectedBumpOutcome::Reshapes;
             out.points = input;
         } else {
             out.outcome = SelectedBumpOutcome::FlatLowpass;
+            out.flat_radius = for_fitted_width ? out.pattern.width : bump_radius;
+            out.flat_for_fitted_width = for_fitted_width;
+            Points footprint_cut;
+            if (!for_fitted_width && lowpass_for) {
+                out.flat_radius = denoise_flat_footprint_cut_factor / denoise_radius_factor * bump_radius;
+                footprint_cut = lowpass_for(input, out.flat_radius).points;
+            }
+            const Points flat = keep_normal_motion(input, footprint_cut.rows() ? footprint_cut : judged, triangles);
             BaseLevelReport base;
             out.points = to_base_level(input, flat, triangles, &base);
             out.base_offset = base.largest_offset;
