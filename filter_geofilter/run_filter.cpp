@@ -650,9 +650,10 @@ RunOutput filter_surface(const FilterSpec& spec, const ParameterValues& given, c
                         : std::string();
                 const std::string why = "fell back to the flat lowpass" + cut + " because " + refused + "; " + detail +
                                         ": bumps of this size and smaller were smoothed away (the lowpass at the paper's cut"
-                                        " for it moved the enclosed volume by " + format_number(100 * bump.flat_volume_change) + " %), and the surface was"
-                                        " moved back to where they stand on it, by the median of what the lowpass removed along"
-                                        " the normals: " + format_number(bump.base_offset);
+                                        " for it moved the enclosed volume by " +
+                                        format_number(100 * bump.flat_volume_change) +
+                                        " %), and the surface was moved back to where they stand on it, by the median of"
+                                        " what the lowpass removed along the normals: " + format_number(bump.base_offset);
                 out.log.push_back("pattern of bumps: " + why);
                 out.report.warnings.push_back(why);
                 break;
