@@ -130,14 +130,13 @@ SelectedBumpDenoise denoise_selected_bump(const Points& input, const Points& low
             out.points = input;
         } else {
             out.outcome = SelectedBumpOutcome::FlatLowpass;
-            out.flat_radius = for_fitted_width ? out.pattern.width : bump_radius;
+            const bool for_footprint = !for_fitted_width && lowpass_for;
             out.flat_for_fitted_width = for_fitted_width;
-            Points footprint_cut;
-            if (!for_fitted_width && lowpass_for) {
-                out.flat_radius = denoise_flat_footprint_cut_factor / denoise_radius_factor * bump_radius;
-                footprint_cut = lowpass_for(input, out.flat_radius).points;
-            }
-            const Points flat = keep_normal_motion(input, footprint_cut.rows() ? footprint_cut : judged, triangles);
+            out.flat_radius = for_fitted_width ? out.pattern.width
+                              : for_footprint  ? denoise_flat_footprint_cut_factor / denoise_radius_factor * bump_radius
+                                               : bump_radius;
+            const Points footprint_cut = for_footprint ? lowpass_for(input, out.flat_radius).points : Points();
+            const Points flat = keep_normal_motion(input, for_footprint ? footprint_cut : judged, triangles);
             BaseLevelReport base;
             out.points = to_base_level(input, flat, triangles, &base);
             out.base_offset = base.largest_offset;
