@@ -643,17 +643,17 @@ RunOutput filter_surface(const FilterSpec& spec, const ParameterValues& given, c
                 const std::string cut =
                     bump.flat_for_fitted_width
                         ? " (cut for the fitted width " + format_number(bump.flat_radius) + ", narrower than the selection)"
-                    : bump.flat_radius < out.feature->radius
-                        ? " (cut at radius " + format_number(denoise_radius_factor * bump.flat_radius) + " = " +
-                              format_number(denoise_flat_footprint_cut_factor) +
-                              " x the selection's radius: a selection is the bump's footprint, wider than the bump)"
                         : std::string();
-                const std::string why = "fell back to the flat lowpass" + cut + " because " + refused + "; " + detail +
-                                        ": bumps of this size and smaller were smoothed away (the lowpass at the paper's cut"
-                                        " for it moved the enclosed volume by " +
-                                        format_number(100 * bump.flat_volume_change) +
-                                        " %), and the surface was moved back to where they stand on it, by the median of"
-                                        " what the lowpass removed along the normals: " + format_number(bump.base_offset);
+                const std::string why =
+                    "fell back to the flat lowpass" + cut + " because " + refused + "; " + detail +
+                    ": bumps of this size and smaller were smoothed away (the lowpass moved the enclosed volume by " +
+                    format_number(100 * bump.flat_volume_change) +
+                    " %), and what it removed of the surface they stand on was put back: where what it removed stands out"
+                    " of a smoother field by more than " + format_number(base_detail_bump_share) +
+                    " of the selected bump's height (" + format_number(bump.base_detail.selected_height) + "), " +
+                    format_number(100 * bump.base_detail.bump_area_share) +
+                    " % of the surface, it was read as bumps and bridged (" +
+                    std::to_string(bump.base_detail.rounds) + " rounds)";
                 out.log.push_back("pattern of bumps: " + why);
                 out.report.warnings.push_back(why);
                 break;

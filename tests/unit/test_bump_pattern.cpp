@@ -105,19 +105,17 @@ bool logged(const RunOutput& out, const std::string& text) {
 }
 
 // The flat fallback where the fit found no width narrower than the selection: the lowpass
-// designed for a bump denoise_flat_footprint_cut_factor / denoise_radius_factor times the
-// measured one (cut at that factor times the selection's radius), its motion along the
-// normals, moved back to the base level.
-Points flat_lowpass_for_footprint(const Points& points, const Triangles& triangles, const std::vector<int>& selected) {
+// designed for the measured bump, its motion along the normals, with the base's detail that
+// it removed put back (with_base_detail, checked against known fields in test_base_detail).
+Points flat_lowpass_for_selection(const Points& points, const Triangles& triangles, const std::vector<int>& selected) {
     const FilterSpec& spec = *find_filter("denoise");
     const ParameterValues values = default_values(spec, true);
-    FeatureEllipsoid footprint = measure_feature(points, triangles, selected);
-    footprint.radius *= denoise_flat_footprint_cut_factor / denoise_radius_factor;
+    const FeatureEllipsoid footprint = measure_feature(points, triangles, selected);
     const RunOutput cut = design_run(spec, values, footprint);
     FilterOptions options = filter_options(spec, values);
     options.op = cut.op;
-    return to_base_level(points, keep_normal_motion(points, apply_filter(points, triangles, cut.transfer, options), triangles),
-                         triangles);
+    const Points flat = keep_normal_motion(points, apply_filter(points, triangles, cut.transfer, options), triangles);
+    return with_base_detail(points, flat, triangles, selected, footprint.radius);
 }
 
 } // namespace
@@ -156,9 +154,9 @@ TEST(BumpPattern, BumpsOfAnotherProfileAreStillMostlyRemoved) {
 TEST(BumpPattern, ASurfaceWhoseOwnDetailDominatesGetsTheFlatLowpass) {
     // Per-vertex noise as large as the "bump": no pattern explains the selection. Returning the
     // input would remove nothing the user asked to remove; the lowpass at the selected scale,
-    // which does, is returned (its motion along the normals, as Denoise keeps it, moved back
-    // to the base level: to_base_level), and the warning says why. No narrower width is
-    // fitted here, so the lowpass is cut for the selection as a footprint.
+    // which does, is returned (its motion along the normals, as Denoise keeps it, with the
+    // base's detail it removed put back: with_base_detail), and the warning says why. No
+    // narrower width is fitted here, so the lowpass is cut for the selection.
     BumpySphere s = bumpy_sphere(1, 0.2, 1, Profile::Gaussian, 4);
     std::mt19937 random(3);
     std::normal_distribution<double> gauss(0.0, 0.01);
@@ -166,11 +164,11 @@ TEST(BumpPattern, ASurfaceWhoseOwnDetailDominatesGetsTheFlatLowpass) {
     const FilterSpec& spec = *find_filter("denoise");
     const ParameterValues values = default_values(spec, true);
     const RunOutput out = run_filter(spec, values, {s.mesh.points, s.mesh.triangles, s.one_bump, {}});
-    EXPECT_EQ(out.points, flat_lowpass_for_footprint(s.mesh.points, s.mesh.triangles, s.one_bump));
+    EXPECT_EQ(out.points, flat_lowpass_for_selection(s.mesh.points, s.mesh.triangles, s.one_bump));
     EXPECT_NE(out.points, s.mesh.points);
     std::string log;
     for (const auto& line : out.log) log += line + "\n";
-    EXPECT_TRUE(logged(out, "x the selection's radius: a selection is the bump's footprint")) << log;
+    EXPECT_TRUE(logged(out, "fell back to the flat lowpass because")) << log;
     EXPECT_TRUE(logged(out, "because the selected bump is not one of a pattern")) << log;
     EXPECT_FALSE(out.report.warnings.empty());
 }
@@ -384,17 +382,17 @@ TEST(BumpPattern, OnAnOpenPatchTheBoundaryIsHeldAndTheResultEndsCloserToTheTruth
     EXPECT_LT(rim_drift, 0.01 * rho);
 }
 
-TEST(BumpPattern, AFlatLowpassForAWideSelectionIsCutNarrowerThanTheSelection) {
+TEST(BumpPattern, AFlatLowpassForAWideSelectionEndsCloserThanTheLowpassCutForTheSelection) {
     // Raised-cosine bumps and dents on a sphere with large smooth bumps of its own, one bump
     // selected generously (faces out to 1.6 of its radius, as a user's footprint). Where the
     // Gaussian profile leaves the selected bump mostly unexplained, the flat lowpass is the
     // fallback; cut for the selection it takes the base's large bumps too (on these patterns
     // it ended farther from the truth than the input). It is cut for the fitted width where
-    // that is narrower, else for the footprint's bump. Five patterns; every one that falls
-    // back must end closer to the truth than the input and than the paper's cut for the
-    // selection, and each of the two narrower cuts must be taken at least once.
+    // that is narrower, and what it removed of the base is put back. Five patterns; every one
+    // that falls back must end closer to the truth than the input and than the plain lowpass
+    // at the paper's cut for the selection, and both cuts must be taken at least once.
     const double rho = 0.065;
-    int narrower = 0, footprint = 0;
+    int narrower = 0, for_selection_cut = 0;
     for (int seed = 1; seed <= 5; ++seed) {
         SCOPED_TRACE("pattern " + std::to_string(seed));
         Mesh truth = icosphere(6, 1.0);
@@ -436,10 +434,10 @@ TEST(BumpPattern, AFlatLowpassForAWideSelectionIsCutNarrowerThanTheSelection) {
         const ParameterValues values = default_values(spec, true);
         const RunOutput out = run_filter(spec, values, {bumpy, truth.triangles, selected, {}});
         const bool for_width = logged(out, "fell back to the flat lowpass (cut for the fitted width");
-        const bool for_footprint = logged(out, "x the selection's radius: a selection is the bump's footprint");
-        if (!for_width && !for_footprint) continue;
+        const bool fell_back = logged(out, "fell back to the flat lowpass");
+        if (!fell_back) continue;
         narrower += for_width;
-        footprint += for_footprint;
+        for_selection_cut += !for_width;
         FilterOptions options = filter_options(spec, values);
         options.op = out.op;
         const double for_selection =
@@ -450,7 +448,7 @@ TEST(BumpPattern, AFlatLowpassForAWideSelectionIsCutNarrowerThanTheSelection) {
         EXPECT_LT(denoised, for_selection) << "input " << input;
     }
     EXPECT_GE(narrower, 1) << "no pattern took the cut for the fitted width: the test checks less than it says";
-    EXPECT_GE(footprint, 1) << "no pattern took the cut for the footprint: the test checks less than it says";
+    EXPECT_GE(for_selection_cut, 1) << "no pattern took the cut for the selection: the test checks less than it says";
 }
 
 TEST(BumpPattern, BumpsAndDentsThatExplainTheSelectionButNotTheRestOfTheSurfaceAreNotSubtracted) {
@@ -517,7 +515,7 @@ TEST(BumpPattern, BumpsAndDentsThatExplainTheSelectionButNotTheRestOfTheSurfaceA
     EXPECT_GT(pattern.unexplained_everywhere, bump_max_unexplained) << log;
     EXPECT_FALSE(pattern.removed);
     EXPECT_TRUE(logged(out, "does not explain the rest of the surface")) << log;
-    EXPECT_EQ(out.points, flat_lowpass_for_footprint(bumpy, truth.triangles, selected)) << log;
+    EXPECT_EQ(out.points, flat_lowpass_for_selection(bumpy, truth.triangles, selected)) << log;
 }
 
 namespace {

@@ -3,7 +3,8 @@
 // measurement (experiments/compare_denoise.py, docs/results.md), not tuned per mesh.
 #pragma once
 
-#include "core/denoise/base_level.h"
+#include "core/denoise/base_detail.h"
+
 #include "core/denoise/bump_pattern.h"
 #include "core/design/butterworth.h"
 #include "core/feature/feature.h"
@@ -72,15 +73,6 @@ enum class SelectedBumpOutcome {
 // input), and the flat fallback is refused.
 constexpr double denoise_flat_max_volume_change = 0.003;
 
-// A user's selection is the bump's footprint, wider than the bump (out to 1.6 radii in the
-// case families), so where the fit finds no narrower width the flat lowpass is cut at this
-// many times the selection's radius instead of the paper's denoise_radius_factor. Chosen on
-// the tuning half of experiments/generalize_denoise, on its 25 flat fallbacks (14 cut for the
-// selection): of 1.25, 1.5, 1.75 and 2, 1.5 left the least in sum and worst case (0.92 of the
-// input's RMS; 2: 1.43, three farther than their input), median 0.66 (2: 0.77); it took five
-// farther than 2 did, two tori whose selection is narrower than their dents among them.
-constexpr double denoise_flat_footprint_cut_factor = 1.5;
-
 struct SelectedBumpDenoise {
     Points points;
     SelectedBumpOutcome outcome = SelectedBumpOutcome::Unchanged;
@@ -92,7 +84,7 @@ struct SelectedBumpDenoise {
     double flat_radius = 0;         // the bump radius the flat lowpass kept was cut for (0: none was kept)
     bool flat_for_fitted_width = false;  // that radius is the fitted width, not the selection's footprint
     double pattern_radius = 0;      // the bump radius the removed pattern was fitted under (the selection's, or the fitted width when narrower)
-    double base_offset = 0;         // how far the flat lowpass was moved back to the base (to_base_level)
+    BaseDetailReport base_detail;   // the base's detail put back into the flat lowpass (with_base_detail)
     // After a pattern was removed: whether its misfit was lowpassed away (denoise_misfit_cut_factor),
     // and that lowpass's largest relative change of a closed component's volume.
     bool misfit_lowpassed = false;
@@ -128,16 +120,14 @@ constexpr double denoise_misfit_cut_factor = 1.5;
 // `options`). The pattern of bumps like it is removed (remove_bump_pattern). When no pattern
 // explains the selection (bumps of another profile, a texture, noise as large as the bump),
 // returning the input would be a silent no-op; the flat lowpass's motion along the normals
-// (normal_motion.h), moved back to the pattern's base (to_base_level), is returned instead
+// (normal_motion.h), with the base's own detail that it removed put back (with_base_detail), is returned instead
 // when it removed detail at the selection higher than bump_min_height of its radius, the height
 // below which a selection is a flat patch; below that the input is returned unchanged, and
 // so it is when the flat lowpass changes a closed component's volume by more than
 // denoise_flat_max_volume_change. The flat lowpass is cut for the width of the profile fitted
 // to the selected bump where that is narrower than the selection (made by `lowpass_for`),
-// else at denoise_flat_footprint_cut_factor times the selection's radius: a user's selection
-// is a footprint, often wider than the bump; that volume check is made on the paper's cut for
-// the fitted width or the selection (`lowpassed`), which judges the surface's own parts. For
-// the same reason a removed pattern whose profile is narrower than the selection is fitted
+// else at the selection (`lowpassed`): a user's selection is a footprint, often wider than
+// the bump. For the same reason a removed pattern whose profile is narrower than the selection is fitted
 // again under the lowpass cut for that width. A removed pattern's misfit is then lowpassed
 // (denoise_misfit_cut_factor), along the normals only, unless that lowpass too would change
 // a closed component's volume by more than denoise_flat_max_volume_change.
