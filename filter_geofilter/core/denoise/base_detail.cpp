@@ -15,8 +15,12 @@ Eigen::VectorXd base_detail(const Eigen::VectorXd& removed, const Laplacian& lap
         throw Error("base_detail: the Laplacian is not of the removed heights' mesh");
     if (!(radius > 0) || !std::isfinite(radius)) throw Error("base_detail: the bump radius must be positive");
     const Eigen::VectorXd& mass = laplacian.mass;
-    Eigen::VectorXd inverse_mass(n);
-    for (Eigen::Index v = 0; v < n; ++v) inverse_mass[v] = mass[v] > 0 ? 1 / mass[v] : 0;
+    // Vertices of zero mass have no data and no penalty: a unit diagonal keeps them at 0.
+    Eigen::VectorXd inverse_mass(n), zero_mass_unit = Eigen::VectorXd::Zero(n);
+    for (Eigen::Index v = 0; v < n; ++v) {
+        inverse_mass[v] = mass[v] > 0 ? 1 / mass[v] : 0;
+        if (!(mass[v] > 0)) zero_mass_unit[v] = 1;
+    }
     const double lambda = radius * radius / 2;
     SparseMatrix penalty = lambda * lambda * (laplacian.stiffness * inverse_mass.asDiagonal() * laplacian.stiffness);
     penalty.makeCompressed();
@@ -27,12 +31,8 @@ Eigen::VectorXd base_detail(const Eigen::VectorXd& removed, const Laplacian& lap
     double threshold = -1;
     for (r.rounds = 1; r.rounds <= base_detail_max_rounds; ++r.rounds) {
         const Eigen::VectorXd weighted_mass = weight.cwiseProduct(mass);
-        // Vertices of zero mass have no data and no penalty: a unit diagonal keeps them at 0.
-        Eigen::VectorXd diagonal = weighted_mass;
-        for (Eigen::Index v = 0; v < n; ++v)
-            if (!(mass[v] > 0)) diagonal[v] = 1;
         SparseMatrix system = penalty;
-        system += SparseMatrix(diagonal.asDiagonal());
+        system += SparseMatrix((weighted_mass + zero_mass_unit).asDiagonal());
         if (r.rounds == 1) factor.analyzePattern(system);
         factor.factorize(system);
         if (factor.info() != Eigen::Success) throw Error("base_detail: the penalised fit could not be factored");

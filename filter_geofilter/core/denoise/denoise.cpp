@@ -1,6 +1,6 @@
 #include "core/denoise/denoise.h"
-#include "core/mesh/boundary.h"
 #include "core/denoise/base_detail.h"
+#include "core/mesh/boundary.h"
 #include "core/mesh/components.h"
 #include "core/mesh/mesh_prep.h"
 #include "core/operators/operators.h"

@@ -4,7 +4,6 @@
 #pragma once
 
 #include "core/denoise/base_detail.h"
-
 #include "core/denoise/bump_pattern.h"
 #include "core/design/butterworth.h"
 #include "core/feature/feature.h"
@@ -120,17 +119,18 @@ constexpr double denoise_misfit_cut_factor = 1.5;
 // `options`). The pattern of bumps like it is removed (remove_bump_pattern). When no pattern
 // explains the selection (bumps of another profile, a texture, noise as large as the bump),
 // returning the input would be a silent no-op; the flat lowpass's motion along the normals
-// (normal_motion.h), with the base's own detail that it removed put back (with_base_detail), is returned instead
-// when it removed detail at the selection higher than bump_min_height of its radius, the height
-// below which a selection is a flat patch; below that the input is returned unchanged, and
-// so it is when the flat lowpass changes a closed component's volume by more than
-// denoise_flat_max_volume_change. The flat lowpass is cut for the width of the profile fitted
-// to the selected bump where that is narrower than the selection (made by `lowpass_for`),
-// else at the selection (`lowpassed`): a user's selection is a footprint, often wider than
-// the bump. For the same reason a removed pattern whose profile is narrower than the selection is fitted
-// again under the lowpass cut for that width. A removed pattern's misfit is then lowpassed
-// (denoise_misfit_cut_factor), along the normals only, unless that lowpass too would change
-// a closed component's volume by more than denoise_flat_max_volume_change.
+// (normal_motion.h), with the base's own detail that it removed put back (with_base_detail),
+// is returned instead when it removed detail at the selection higher than bump_min_height of
+// its radius, the height below which a selection is a flat patch; below that the input is
+// returned unchanged, and so it is when the flat lowpass changes a closed component's volume
+// by more than denoise_flat_max_volume_change. The flat lowpass is cut for the width of the
+// profile fitted to the selected bump where that is narrower than the selection (made by
+// `lowpass_for`), else at the selection (`lowpassed`): a user's selection is a footprint,
+// often wider than the bump. For the same reason a removed pattern whose profile is narrower
+// than the selection is fitted again under the lowpass cut for that width. A removed pattern's
+// misfit is then lowpassed (denoise_misfit_cut_factor), along the normals only, unless that
+// lowpass too would change a closed component's volume by more than
+// denoise_flat_max_volume_change.
 SelectedBumpDenoise denoise_selected_bump(const Points& input, const Points& lowpassed, const Triangles& triangles,
                                           const std::vector<int>& bump_faces, double bump_radius,
                                           const TransferFunction& g, const FilterOptions& options,
